@@ -1,0 +1,74 @@
+#include "boundary.h"
+
+#include <algorithm>
+#include <dolfinx/fem/DofMap.h>
+#include <dolfinx/mesh/Mesh.h>
+#include <dolfinx/mesh/Topology.h>
+
+namespace gelx
+{
+
+DirichletConditions::DirichletConditions(
+    std::shared_ptr<const dolfinx::fem::FunctionSpace> displacement_space,
+    std::shared_ptr<const dolfinx::mesh::MeshTags<std::int32_t>> facet_tags)
+    : _V(std::move(displacement_space)), _facet_tags(std::move(facet_tags))
+{
+}
+
+void DirichletConditions::prescribe(int tag, int component, Profile value)
+{
+  const auto& mesh = *_V->mesh();
+  const int fdim = mesh.topology().dim() - 1;
+  if (component < 0 || component >= mesh.geometry().dim())
+    throw std::runtime_error("displacement component " + std::to_string(component)
+                             + " does not exist");
+  std::vector<std::int32_t> facets = _facet_tags->find(tag);
+
+  auto sub = _V->sub({component});
+  auto collapsed = std::make_shared<dolfinx::fem::FunctionSpace>(sub->collapse().first);
+  auto dofs = dolfinx::fem::locate_dofs_topological({*sub, *collapsed}, fdim, facets);
+  auto g = std::make_shared<dolfinx::fem::Function<double>>(collapsed);
+
+  // Only the cells on these facets carry boundary values; evaluate the profile there alone
+  auto f_to_c = mesh.topology().connectivity(fdim, fdim + 1);
+  std::vector<std::int32_t> cells;
+  for (std::int32_t f : facets)
+  {
+    auto c = f_to_c->links(f);
+    cells.insert(cells.end(), c.begin(), c.end());
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+
+  _conditions.push_back({g, std::move(cells), std::move(value)});
+  _bcs.push_back(std::make_shared<const dolfinx::fem::DirichletBC<double>>(g, std::move(dofs), sub));
+}
+
+void DirichletConditions::fix(int tag, int component)
+{
+  prescribe(tag, component, [](double, const std::array<double, 3>&) { return 0.0; });
+}
+
+void DirichletConditions::clamp(int tag)
+{
+  for (int c = 0; c < _V->mesh()->geometry().dim(); ++c)
+    fix(tag, c);
+}
+
+void DirichletConditions::update(double t)
+{
+  for (auto& condition : _conditions)
+  {
+    condition.value->interpolate(
+        [&](const xt::xtensor<double, 2>& x) -> xt::xarray<double>
+        {
+          xt::xarray<double> values = xt::zeros<double>({x.shape(1)});
+          for (std::size_t p = 0; p < x.shape(1); ++p)
+            values(p) = condition.profile(t, {x(0, p), x(1, p), x(2, p)});
+          return values;
+        },
+        condition.cells);
+  }
+}
+
+} // namespace gelx

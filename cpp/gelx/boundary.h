@@ -1,0 +1,61 @@
+#pragma once
+/// @file boundary.h
+/// Dirichlet conditions by facet tag and displacement component, with values that follow the
+/// load factor t.
+
+#include <array>
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/fem/FunctionSpace.h>
+#include <dolfinx/mesh/MeshTags.h>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace gelx
+{
+
+/// Dirichlet conditions on the displacement.
+///
+/// Each condition prescribes one component of the displacement on the facets with one tag to a
+/// value u_c(t, X) of the load factor t and the reference position X. The displacement space
+/// may be a sub-space (the u of a mixed u-p space).
+class DirichletConditions
+{
+public:
+  using Profile = std::function<double(double t, const std::array<double, 3>& X)>;
+
+  DirichletConditions(std::shared_ptr<const dolfinx::fem::FunctionSpace> displacement_space,
+                      std::shared_ptr<const dolfinx::mesh::MeshTags<std::int32_t>> facet_tags);
+
+  /// Prescribe u_component = value(t, X) on the facets tagged `tag`.
+  void prescribe(int tag, int component, Profile value);
+
+  /// Hold u_component = 0 on the facets tagged `tag` (a roller when used for one component).
+  void fix(int tag, int component);
+
+  /// Clamp: u = 0 on the facets tagged `tag`.
+  void clamp(int tag);
+
+  /// Evaluate every prescribed value at load factor t.
+  void update(double t);
+
+  const std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>>& bcs() const
+  {
+    return _bcs;
+  }
+
+private:
+  struct Condition
+  {
+    std::shared_ptr<dolfinx::fem::Function<double>> value;
+    std::vector<std::int32_t> cells; // cells touching the facets, where `value` is evaluated
+    Profile profile;
+  };
+  std::shared_ptr<const dolfinx::fem::FunctionSpace> _V;
+  std::shared_ptr<const dolfinx::mesh::MeshTags<std::int32_t>> _facet_tags;
+  std::vector<Condition> _conditions;
+  std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
+};
+
+} // namespace gelx

@@ -1,0 +1,209 @@
+#include "mesh.h"
+#include "parameters.h"
+
+#include <dolfinx/common/MPI.h>
+#include <dolfinx/fem/CoordinateElement.h>
+#include <dolfinx/graph/AdjacencyList.h>
+#include <dolfinx/io/cells.h>
+#include <dolfinx/io/xdmf_utils.h>
+#include <dolfinx/mesh/Topology.h>
+#include <dolfinx/mesh/cell_types.h>
+#include <filesystem>
+#include <gmsh.h>
+#include <numeric>
+
+namespace gelx
+{
+namespace
+{
+/// What rank 0 reads from gmsh: nodes, cells and boundary facets in gmsh's node order.
+struct GmshData
+{
+  std::vector<double> x;                       // node coordinates, (num_nodes, 3)
+  std::vector<std::int64_t> cells;             // cell -> node indices, dolfinx ordering
+  std::vector<std::int32_t> cell_values;       // physical tag per cell
+  std::vector<std::int64_t> facets;            // facet -> node indices
+  std::vector<std::int32_t> facet_values;      // physical tag per facet
+  int cell_type_code = 0;                      // 4 tetrahedron, 5 hexahedron
+  std::map<std::string, int> names;
+};
+
+dolfinx::mesh::CellType cell_type_of(int gmsh_type)
+{
+  switch (gmsh_type)
+  {
+  case 4:
+    return dolfinx::mesh::CellType::tetrahedron;
+  case 5:
+    return dolfinx::mesh::CellType::hexahedron;
+  default:
+    throw std::runtime_error("gmsh element type " + std::to_string(gmsh_type)
+                             + " is not supported (use linear tetrahedra or hexahedra)");
+  }
+}
+
+/// Elements of dimension `dim` in every physical group of that dimension, with their tags.
+void read_physical_elements(int dim, const std::map<std::size_t, std::int64_t>& node_index,
+                            int& element_type, std::vector<std::int64_t>& nodes,
+                            std::vector<std::int32_t>& values, std::map<std::string, int>& names)
+{
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, dim);
+  for (auto [d, group] : groups)
+  {
+    std::string name;
+    gmsh::model::getPhysicalName(d, group, name);
+    if (!name.empty())
+      names[name] = group;
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(d, group, entities);
+    for (int entity : entities)
+    {
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> element_tags, node_tags;
+      gmsh::model::mesh::getElements(types, element_tags, node_tags, d, entity);
+      for (std::size_t k = 0; k < types.size(); ++k)
+      {
+        if (element_type != 0 && element_type != types[k])
+          throw std::runtime_error("mixed element types in physical groups of dimension "
+                                   + std::to_string(dim));
+        element_type = types[k];
+        for (std::size_t tag : node_tags[k])
+          nodes.push_back(node_index.at(tag));
+        values.insert(values.end(), element_tags[k].size(), group);
+      }
+    }
+  }
+}
+
+GmshData mesh_with_gmsh(const std::string& geo_file, const std::map<std::string, double>& numbers)
+{
+  std::vector<std::string> args = {"gelx"};
+  for (auto& [name, value] : numbers)
+    args.insert(args.end(), {"-setnumber", name, std::to_string(value)});
+  std::vector<char*> argv;
+  for (auto& a : args)
+    argv.push_back(a.data());
+  gmsh::initialize(static_cast<int>(argv.size()), argv.data(), false);
+  gmsh::option::setNumber("General.Verbosity", 2);
+  GmshData data;
+  try
+  {
+    gmsh::open(geo_file);
+    gmsh::model::mesh::generate(3);
+
+    std::vector<std::size_t> node_tags;
+    std::vector<double> coords, parametric;
+    gmsh::model::mesh::getNodes(node_tags, coords, parametric);
+    std::map<std::size_t, std::int64_t> node_index;
+    for (std::size_t i = 0; i < node_tags.size(); ++i)
+      node_index[node_tags[i]] = static_cast<std::int64_t>(i);
+    data.x = coords;
+
+    int facet_type = 0;
+    read_physical_elements(3, node_index, data.cell_type_code, data.cells, data.cell_values,
+                           data.names);
+    read_physical_elements(2, node_index, facet_type, data.facets, data.facet_values,
+                           data.names);
+    if (data.cells.empty())
+      throw std::runtime_error(geo_file + " defines no physical volume");
+  }
+  catch (...)
+  {
+    gmsh::finalize();
+    throw;
+  }
+  gmsh::finalize();
+
+  // gmsh and dolfinx number the nodes of a cell differently
+  const auto type = cell_type_of(data.cell_type_code);
+  const int nv = dolfinx::mesh::num_cell_vertices(type);
+  const std::vector<std::uint8_t> perm = dolfinx::io::cells::perm_gmsh(type, nv);
+  data.cells = dolfinx::io::cells::apply_permutation(
+      data.cells, {data.cells.size() / nv, static_cast<std::size_t>(nv)}, perm);
+  return data;
+}
+} // namespace
+
+int TaggedMesh::tag(const std::string& name) const
+{
+  auto it = names.find(name);
+  if (it == names.end())
+    throw std::runtime_error("the mesh has no physical group named '" + name + "'");
+  return it->second;
+}
+
+TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
+                    const std::map<std::string, double>& numbers)
+{
+  if (!std::filesystem::is_regular_file(geo_file))
+    throw InputError("mesh file '" + geo_file + "' not found");
+
+  const int rank = dolfinx::MPI::rank(comm);
+  GmshData data;
+  if (rank == 0)
+    data = mesh_with_gmsh(geo_file, numbers);
+
+  // Rank 0 tells the others the cell type and the group names
+  int type_code = data.cell_type_code;
+  MPI_Bcast(&type_code, 1, MPI_INT, 0, comm);
+  const auto type = cell_type_of(type_code);
+  const int nv = dolfinx::mesh::num_cell_vertices(type);
+  std::string names_text;
+  for (auto& [name, tag] : data.names)
+    names_text += name + " " + std::to_string(tag) + "\n";
+  int names_size = static_cast<int>(names_text.size());
+  MPI_Bcast(&names_size, 1, MPI_INT, 0, comm);
+  names_text.resize(names_size);
+  MPI_Bcast(names_text.data(), names_size, MPI_CHAR, 0, comm);
+
+  const std::size_t num_cells = data.cells.size() / nv;
+  std::vector<std::int32_t> offsets(num_cells + 1);
+  for (std::size_t c = 0; c <= num_cells; ++c)
+    offsets[c] = static_cast<std::int32_t>(c * nv);
+  dolfinx::graph::AdjacencyList<std::int64_t> cells(data.cells, offsets);
+  const dolfinx::fem::CoordinateElement cmap(type, 1);
+  auto mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_mesh(
+      comm, cells, cmap, data.x, {data.x.size() / 3, 3},
+      dolfinx::mesh::GhostMode::shared_facet));
+
+  TaggedMesh result;
+  result.mesh = mesh;
+  std::istringstream names_in(names_text);
+  for (std::string name; names_in >> name;)
+    names_in >> result.names[name];
+
+  // Cell tags: every rank looks its cells up by their input index in the broadcast tag list
+  std::int64_t num_input_cells = static_cast<std::int64_t>(data.cell_values.size());
+  MPI_Bcast(&num_input_cells, 1, MPI_INT64_T, 0, comm);
+  data.cell_values.resize(num_input_cells);
+  MPI_Bcast(data.cell_values.data(), static_cast<int>(num_input_cells), MPI_INT32_T, 0, comm);
+  const int tdim = mesh->topology().dim();
+  const auto& original = mesh->topology().original_cell_index;
+  std::vector<std::int32_t> cell_indices(original.size()), cell_values(original.size());
+  std::iota(cell_indices.begin(), cell_indices.end(), 0);
+  for (std::size_t c = 0; c < original.size(); ++c)
+    cell_values[c] = data.cell_values[original[c]];
+  result.cell_tags = std::make_shared<dolfinx::mesh::MeshTags<std::int32_t>>(
+      mesh, tdim, std::move(cell_indices), std::move(cell_values));
+
+  // Facet tags: dolfinx sends each tagged facet to the ranks that hold it
+  mesh->topology_mutable().create_entities(tdim - 1);
+  mesh->topology_mutable().create_connectivity(tdim - 1, tdim);
+  const int facet_nv = dolfinx::mesh::num_cell_vertices(
+      dolfinx::mesh::cell_facet_type(type, 0));
+  auto [facet_vertices, facet_values]
+      = dolfinx::io::xdmf_utils::distribute_entity_data(*mesh, tdim - 1, data.facets,
+                                                        data.facet_values);
+  std::vector<std::int32_t> facet_offsets(facet_values.size() + 1);
+  for (std::size_t f = 0; f < facet_offsets.size(); ++f)
+    facet_offsets[f] = static_cast<std::int32_t>(f * facet_nv);
+  result.facet_tags = std::make_shared<dolfinx::mesh::MeshTags<std::int32_t>>(
+      dolfinx::mesh::create_meshtags(
+          mesh, tdim - 1,
+          dolfinx::graph::AdjacencyList<std::int32_t>(facet_vertices, facet_offsets),
+          std::span<const std::int32_t>(facet_values)));
+  return result;
+}
+
+} // namespace gelx

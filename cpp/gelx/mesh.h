@@ -1,0 +1,38 @@
+#pragma once
+/// @file mesh.h
+/// Meshes from gmsh `.geo` files with their physical groups as dolfinx tags.
+
+#include <dolfinx/mesh/Mesh.h>
+#include <dolfinx/mesh/MeshTags.h>
+#include <map>
+#include <memory>
+#include <mpi.h>
+#include <string>
+
+namespace gelx
+{
+
+/// A distributed mesh with the gmsh physical groups of its cells and boundary facets.
+struct TaggedMesh
+{
+  std::shared_ptr<dolfinx::mesh::Mesh> mesh;
+  std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> cell_tags;
+  std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> facet_tags;
+  /// Physical group names from the .geo file, name -> tag (cells and facets share the map)
+  std::map<std::string, int> names;
+
+  /// Tag of a named physical group; throws std::runtime_error naming it when absent.
+  int tag(const std::string& name) const;
+};
+
+/// Mesh the `.geo` file with gmsh on rank 0 and distribute it over `comm`.
+///
+/// `numbers` overrides the file's `DefineConstant`/variables (gmsh `-setnumber`), so a
+/// scene's geometry parameters reach the mesh without editing the file. Physical volumes become
+/// cell tags and physical surfaces facet tags. Linear tetrahedra and hexahedra are supported.
+/// Throws gelx::InputError when the file is missing (checked on every rank before any
+/// collective call).
+TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
+                    const std::map<std::string, double>& numbers = {});
+
+} // namespace gelx

@@ -1,0 +1,86 @@
+#pragma once
+/// @file output.h
+/// Results of a run: XDMF/HDF5 field series, a per-step CSV, and summary.json.
+///
+/// Every converged step is appended and the files are closed again, so a run stopped half-way
+/// leaves every completed step readable (ParaView opens fields.xdmf).
+
+#include <dolfinx/fem/Expression.h>
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/mesh/Mesh.h>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace gelx
+{
+
+/// Cell-wise (DG0) output of a UFL Expression evaluated at the cell midpoints.
+///
+/// A scalar expression gives one field NAME. A 3x3 tensor (the Cauchy stress) gives scalar
+/// fields ParaView plots directly: its six components NAME_xx, NAME_yy, NAME_zz, NAME_yz,
+/// NAME_xz, NAME_xy, the von Mises stress NAME_vm = sqrt(3/2 s:s) and the pressure
+/// NAME_p = -tr/3.
+class CellField
+{
+public:
+  CellField(const std::string& name, std::shared_ptr<const dolfinx::fem::Expression<double>> e);
+  /// Re-evaluate the expression at the current state.
+  void update();
+  const std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>>& functions() const
+  {
+    return _outputs;
+  }
+
+private:
+  std::shared_ptr<const dolfinx::fem::Expression<double>> _expression;
+  std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _fields;
+  std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>> _outputs;
+};
+
+/// The displacement interpolated into vertex values (P1), which XDMF stores on the mesh nodes.
+class NodalField
+{
+public:
+  NodalField(const std::string& name, std::shared_ptr<const dolfinx::fem::Function<double>> u);
+  void update();
+  std::shared_ptr<dolfinx::fem::Function<double>> function() const { return _f; }
+
+private:
+  std::shared_ptr<const dolfinx::fem::Function<double>> _u;
+  std::shared_ptr<dolfinx::fem::Function<double>> _f;
+};
+
+/// Writes one run's results into one folder.
+class ResultsWriter
+{
+public:
+  /// Creates `folder` and writes the mesh into folder/fields.xdmf (+ .h5).
+  ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
+                std::shared_ptr<const dolfinx::mesh::Mesh> mesh);
+
+  /// Append the fields at time (load factor) t to fields.xdmf, then close the file.
+  void write_fields(double t,
+                    const std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>>& f);
+
+  /// Append one row to steps.csv (columns from the first row's keys), then flush.
+  void append_step(const nlohmann::json& row);
+
+  /// Write summary.json (atomically: a reader never sees half a file).
+  void write_summary(const nlohmann::json& summary);
+
+  const std::filesystem::path& folder() const { return _folder; }
+
+private:
+  MPI_Comm _comm;
+  std::filesystem::path _folder;
+  std::vector<std::string> _columns;
+  bool _root;
+};
+
+/// Versions of the libraries a run used, for summary.json.
+nlohmann::json software_versions();
+
+} // namespace gelx

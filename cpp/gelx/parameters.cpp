@@ -1,0 +1,264 @@
+#include "parameters.h"
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace gelx
+{
+namespace
+{
+std::string trim(const std::string& s)
+{
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos)
+    return "";
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+std::string to_text(const Parameters::Value& v)
+{
+  return std::visit(
+      [](const auto& x) -> std::string
+      {
+        using X = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<X, std::string>)
+          return x;
+        else if constexpr (std::is_same_v<X, bool>)
+          return x ? "true" : "false";
+        else
+        {
+          std::ostringstream s;
+          s << std::setprecision(12) << x;
+          return s.str();
+        }
+      },
+      v);
+}
+
+/// Parse `text` as the same type as `like`; throws InputError naming the parameter.
+Parameters::Value parse_as(const Parameters::Value& like, const std::string& name,
+                           const std::string& text)
+{
+  const std::string bad = "parameter '" + name + "': '" + text + "' is not ";
+  try
+  {
+    std::size_t used = 0;
+    switch (like.index())
+    {
+    case 0:
+    {
+      double v = std::stod(text, &used);
+      if (used != text.size())
+        throw std::invalid_argument("");
+      return v;
+    }
+    case 1:
+    {
+      int v = std::stoi(text, &used);
+      if (used != text.size())
+        throw std::invalid_argument("");
+      return v;
+    }
+    case 2:
+      if (text == "true" || text == "1" || text == "yes" || text == "on")
+        return true;
+      if (text == "false" || text == "0" || text == "no" || text == "off")
+        return false;
+      throw std::invalid_argument("");
+    default:
+      return text;
+    }
+  }
+  catch (const std::logic_error&)
+  {
+    static const char* kinds[] = {"a number", "an integer", "true or false", "text"};
+    throw InputError(bad + kinds[like.index()]);
+  }
+}
+} // namespace
+
+void Parameters::declare(const std::string& section, const std::string& name, Value value,
+                         const std::string& help,
+                         std::function<std::string(const Value&)> valid)
+{
+  if (_entries.count(name))
+    throw std::logic_error("parameter '" + name + "' declared twice");
+  _entries[name] = Entry{section, std::move(value), help, std::move(valid)};
+  _order.push_back(name);
+}
+
+void Parameters::add(const std::string& section, const std::string& name, double value,
+                     const std::string& help, std::function<std::string(double)> valid)
+{
+  declare(section, name, value, help,
+          valid ? [valid](const Value& v) { return valid(std::get<double>(v)); }
+                : std::function<std::string(const Value&)>());
+}
+
+void Parameters::add(const std::string& section, const std::string& name, int value,
+                     const std::string& help, std::function<std::string(int)> valid)
+{
+  declare(section, name, value, help,
+          valid ? [valid](const Value& v) { return valid(std::get<int>(v)); }
+                : std::function<std::string(const Value&)>());
+}
+
+void Parameters::add(const std::string& section, const std::string& name, bool value,
+                     const std::string& help)
+{
+  declare(section, name, value, help, nullptr);
+}
+
+void Parameters::add(const std::string& section, const std::string& name, const char* value,
+                     const std::string& help,
+                     std::function<std::string(const std::string&)> valid)
+{
+  declare(section, name, std::string(value), help,
+          valid ? [valid](const Value& v) { return valid(std::get<std::string>(v)); }
+                : std::function<std::string(const Value&)>());
+}
+
+const Parameters::Entry& Parameters::entry(const std::string& name) const
+{
+  auto it = _entries.find(name);
+  if (it == _entries.end())
+    throw InputError("unknown parameter '" + name + "' (see --help)");
+  return it->second;
+}
+
+void Parameters::set(const std::string& name, const std::string& text)
+{
+  const Entry& e = entry(name);
+  Value v = parse_as(e.value, name, trim(text));
+  if (e.valid)
+  {
+    if (std::string why = e.valid(v); !why.empty())
+      throw InputError("parameter '" + name + "' = " + to_text(v) + ": " + why);
+  }
+  _entries[name].value = v;
+}
+
+std::vector<std::string> Parameters::parse(int argc, char* argv[], bool* help_requested)
+{
+  std::vector<std::string> rest = {argv[0]};
+  if (help_requested)
+    *help_requested = false;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h")
+    {
+      if (help_requested)
+        *help_requested = true;
+      continue;
+    }
+    if (arg.rfind("--", 0) != 0)
+    {
+      rest.push_back(arg); // a PETSc option or its value
+      continue;
+    }
+    std::string name = arg.substr(2), value;
+    if (auto eq = name.find('='); eq != std::string::npos)
+    {
+      value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+    }
+    else
+    {
+      const bool is_flag = _entries.count(name) && _entries.at(name).value.index() == 2;
+      const bool has_value = i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0;
+      if (is_flag && !(has_value && (std::string(argv[i + 1]) == "true"
+                                     || std::string(argv[i + 1]) == "false")))
+        value = "true";
+      else if (has_value)
+        value = argv[++i];
+      else
+        throw InputError("option --" + name + " needs a value");
+    }
+    if (name == "scene")
+      read_file(value);
+    else
+      set(name, value);
+  }
+  return rest;
+}
+
+void Parameters::read_file(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in)
+    throw InputError("cannot read scene file '" + path + "'");
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number)
+  {
+    line = trim(line.substr(0, line.find('#')));
+    if (line.empty())
+      continue;
+    const auto eq = line.find('=');
+    if (eq == std::string::npos)
+      throw InputError(path + ":" + std::to_string(number) + ": expected 'name = value'");
+    set(trim(line.substr(0, eq)), line.substr(eq + 1));
+  }
+}
+
+double Parameters::real(const std::string& name) const
+{
+  return std::get<double>(entry(name).value);
+}
+int Parameters::integer(const std::string& name) const
+{
+  return std::get<int>(entry(name).value);
+}
+bool Parameters::flag(const std::string& name) const
+{
+  return std::get<bool>(entry(name).value);
+}
+const std::string& Parameters::text(const std::string& name) const
+{
+  return std::get<std::string>(entry(name).value);
+}
+
+std::string Parameters::table(bool with_help) const
+{
+  std::map<std::string, std::vector<std::string>> by_section;
+  std::vector<std::string> sections;
+  for (const auto& name : _order)
+  {
+    const auto& s = _entries.at(name).section;
+    if (by_section[s].empty())
+      sections.push_back(s);
+    by_section[s].push_back(name);
+  }
+  std::ostringstream out;
+  for (const auto& s : sections)
+  {
+    out << s << ":\n";
+    for (const auto& name : by_section[s])
+    {
+      const Entry& e = _entries.at(name);
+      out << "  --" << std::left << std::setw(22) << name << std::setw(14) << to_text(e.value);
+      if (with_help)
+        out << e.help;
+      out << "\n";
+    }
+  }
+  return out.str();
+}
+
+nlohmann::json Parameters::to_json() const
+{
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& name : _order)
+    std::visit([&](const auto& v) { j[name] = v; }, _entries.at(name).value);
+  return j;
+}
+
+std::string Parameters::positive(double v) { return v > 0 ? "" : "must be positive"; }
+std::string Parameters::non_negative(double v)
+{
+  return v >= 0 ? "" : "must not be negative";
+}
+std::string Parameters::at_least_one(int v) { return v >= 1 ? "" : "must be at least 1"; }
+
+} // namespace gelx

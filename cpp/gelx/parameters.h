@@ -1,0 +1,84 @@
+#pragma once
+/// @file parameters.h
+/// Typed, validated scene parameters read from the command line and from a scene file.
+///
+/// Each parameter has a section (geometry, material, ...), a default, a help text and a validity
+/// check; everything is echoed at start-up and stored in summary.json. Scene parameters are
+/// spelled `--name value` (or `name = value` in a file given with `--scene FILE`); arguments
+/// starting with a single dash (`-newton_ksp_type cg`) are left to the PETSc options database.
+
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace gelx
+{
+
+/// Bad user input (unknown option, value out of range, unreadable file): reported in one line.
+class InputError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+class Parameters
+{
+public:
+  using Value = std::variant<double, int, bool, std::string>;
+
+  /// Declare a real parameter; `valid` returns an empty string when the value is acceptable,
+  /// otherwise the reason ("must be positive").
+  void add(const std::string& section, const std::string& name, double value,
+           const std::string& help,
+           std::function<std::string(double)> valid = nullptr);
+  void add(const std::string& section, const std::string& name, int value,
+           const std::string& help, std::function<std::string(int)> valid = nullptr);
+  void add(const std::string& section, const std::string& name, bool value,
+           const std::string& help);
+  void add(const std::string& section, const std::string& name, const char* value,
+           const std::string& help,
+           std::function<std::string(const std::string&)> valid = nullptr);
+
+  /// Read `--name value` pairs and `--scene FILE`; `--help` prints the table and returns false.
+  /// Returns the remaining arguments (PETSc options), argv[0] first. Throws InputError.
+  std::vector<std::string> parse(int argc, char* argv[], bool* help_requested = nullptr);
+
+  /// Read `name = value` lines (`#` starts a comment). Throws InputError.
+  void read_file(const std::string& path);
+
+  /// Set one parameter from its text form, validating it. Throws InputError.
+  void set(const std::string& name, const std::string& text);
+
+  double real(const std::string& name) const;
+  int integer(const std::string& name) const;
+  bool flag(const std::string& name) const;
+  const std::string& text(const std::string& name) const;
+
+  /// Table of all parameters grouped by section, for the start-up echo and --help.
+  std::string table(bool with_help) const;
+  nlohmann::json to_json() const;
+
+  /// Common validity checks.
+  static std::string positive(double v);
+  static std::string non_negative(double v);
+  static std::string at_least_one(int v);
+
+private:
+  struct Entry
+  {
+    std::string section;
+    Value value;
+    std::string help;
+    std::function<std::string(const Value&)> valid;
+  };
+  const Entry& entry(const std::string& name) const;
+  void declare(const std::string& section, const std::string& name, Value value,
+               const std::string& help, std::function<std::string(const Value&)> valid);
+  std::map<std::string, Entry> _entries;
+  std::vector<std::string> _order;
+};
+
+} // namespace gelx

@@ -1,0 +1,53 @@
+#include "petsc_utils.h"
+
+namespace gelx
+{
+
+void petsc_check(PetscErrorCode ierr, const char* call)
+{
+  if (ierr == 0)
+    return;
+  const char* text = nullptr;
+  PetscErrorMessage(ierr, &text, nullptr);
+  throw std::runtime_error(std::string("PETSc call failed: ") + call + ": "
+                           + (text ? text : "unknown error"));
+}
+
+void set_default_option(const std::string& prefix, const std::string& name,
+                        const std::string& value)
+{
+  const std::string option = "-" + prefix + name;
+  PetscBool is_set = PETSC_FALSE;
+  GELX_PETSC(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &is_set));
+  if (!is_set)
+    GELX_PETSC(PetscOptionsSetValue(nullptr, option.c_str(),
+                                    value.empty() ? nullptr : value.c_str()));
+}
+
+double real_option(const std::string& prefix, const std::string& name, double fallback)
+{
+  PetscReal value = fallback;
+  GELX_PETSC(PetscOptionsGetReal(nullptr, prefix.c_str(), ("-" + name).c_str(), &value,
+                                 nullptr));
+  return value;
+}
+
+int int_option(const std::string& prefix, const std::string& name, int fallback)
+{
+  PetscInt value = fallback;
+  GELX_PETSC(PetscOptionsGetInt(nullptr, prefix.c_str(), ("-" + name).c_str(), &value,
+                                nullptr));
+  return static_cast<int>(value);
+}
+
+std::string string_option(const std::string& prefix, const std::string& name,
+                          const std::string& fallback)
+{
+  char value[256];
+  PetscBool found = PETSC_FALSE;
+  GELX_PETSC(PetscOptionsGetString(nullptr, prefix.c_str(), ("-" + name).c_str(), value,
+                                   sizeof(value), &found));
+  return found ? std::string(value) : fallback;
+}
+
+} // namespace gelx

@@ -1,0 +1,34 @@
+#pragma once
+/// @file petsc_utils.h
+/// PETSc error codes as exceptions, and defaults in the options database that never override
+/// what the user passed.
+
+#include <petscsys.h>
+#include <stdexcept>
+#include <string>
+
+namespace gelx
+{
+
+/// Throws std::runtime_error naming the PETSc call when `ierr` is non-zero.
+void petsc_check(PetscErrorCode ierr, const char* call);
+
+/// Wrap a PETSc call: GELX_PETSC(VecNorm(x, NORM_2, &n));
+#define GELX_PETSC(call) ::gelx::petsc_check((call), #call)
+
+/// Set option `-<prefix><name>` to `value` unless it is already set (on the command line,
+/// in PETSC_OPTIONS or an options file), so that scene defaults never override the user.
+void set_default_option(const std::string& prefix, const std::string& name,
+                        const std::string& value = "");
+
+/// Value of a real option `-<prefix><name>`, or `fallback` when unset.
+double real_option(const std::string& prefix, const std::string& name, double fallback);
+
+/// Value of an integer option `-<prefix><name>`, or `fallback` when unset.
+int int_option(const std::string& prefix, const std::string& name, int fallback);
+
+/// Value of a string option `-<prefix><name>`, or `fallback` when unset.
+std::string string_option(const std::string& prefix, const std::string& name,
+                          const std::string& fallback);
+
+} // namespace gelx

@@ -1,0 +1,112 @@
+#pragma once
+/// @file problem.h
+/// The discrete equilibrium problem R(u) = 0 that the Newton solver and the load stepper drive.
+
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/Expression.h>
+#include <dolfinx/fem/Form.h>
+#include <dolfinx/fem/Function.h>
+#include <array>
+#include <dolfinx/mesh/MeshTags.h>
+#include <memory>
+#include <petscmat.h>
+#include <petscvec.h>
+#include <vector>
+
+namespace gelx
+{
+
+/// What a nonlinear solver needs of a problem: the unknown vector, the residual and tangent at
+/// it, and whether it is admissible (e.g. no inverted element).
+///
+/// Later extensions implement this interface on top of a NonlinearProblem: a reduced space for
+/// multipoint constraints (u = P u_r + g), one extra unknown for arc-length continuation.
+class NonlinearSystem
+{
+public:
+  virtual ~NonlinearSystem() = default;
+  /// The unknowns (owned entries are what the solver updates).
+  virtual Vec unknowns() = 0;
+  /// To be called after the owned entries of unknowns() changed.
+  virtual void unknowns_changed() = 0;
+  /// Residual at the current unknowns; zero in constrained rows.
+  virtual void residual(Vec r) = 0;
+  /// Tangent dR/du at the current unknowns; identity in constrained rows.
+  virtual void tangent(Mat A) = 0;
+  virtual Vec create_vector() const = 0;
+  virtual Mat create_matrix() const = 0;
+  /// False when the current unknowns are physically inadmissible (det F <= 0 somewhere).
+  virtual bool admissible() const { return true; }
+};
+
+/// R(u) = 0 from a UFL residual form and its tangent, with Dirichlet conditions u_D = g.
+///
+/// The residual is lifted: in constrained rows it is u - g, elsewhere R(u) + K (g - u)_D. The
+/// first Newton correction after a change of g therefore moves the constrained dofs onto g and
+/// spreads that increment through the body with the tangent (a linear predictor), instead of
+/// leaving it to a crushed layer of boundary elements; once u_D = g the lifted residual is R(u).
+class NonlinearProblem : public NonlinearSystem
+{
+public:
+  using BCs = std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>>;
+
+  /// @param u the unknown Function (coefficient of both forms)
+  /// @param residual_form linear form R(u; v)
+  /// @param tangent_form bilinear form dR/du
+  /// @param bcs Dirichlet conditions on (sub-spaces of) u's space; their current values are
+  ///        read at every residual evaluation
+  /// @param det_F optional Expression of det F at quadrature points, for the admissibility check
+  NonlinearProblem(std::shared_ptr<dolfinx::fem::Function<double>> u,
+                   std::shared_ptr<const dolfinx::fem::Form<double>> residual_form,
+                   std::shared_ptr<const dolfinx::fem::Form<double>> tangent_form, BCs bcs,
+                   std::shared_ptr<const dolfinx::fem::Expression<double>> det_F = nullptr);
+  ~NonlinearProblem() override;
+  NonlinearProblem(const NonlinearProblem&) = delete;
+  NonlinearProblem& operator=(const NonlinearProblem&) = delete;
+
+  Vec unknowns() override { return _x; }
+  void unknowns_changed() override;
+  void residual(Vec r) override;
+  void tangent(Mat A) override;
+  Vec create_vector() const override;
+  Mat create_matrix() const override;
+  bool admissible() const override;
+
+  /// Smallest det F over the quadrature points of all cells (all ranks); +inf without det_F.
+  double min_det_F() const;
+
+  /// Internal force vector R(u) without Dirichlet rows zeroed: at equilibrium its entries on
+  /// constrained dofs are the reaction forces.
+  void internal_forces(Vec f) const;
+
+  std::shared_ptr<dolfinx::fem::Function<double>> u() const { return _u; }
+  const BCs& bcs() const { return _bcs; }
+
+private:
+  std::shared_ptr<dolfinx::fem::Function<double>> _u;
+  std::shared_ptr<const dolfinx::fem::Form<double>> _R, _J;
+  BCs _bcs;
+  std::shared_ptr<const dolfinx::fem::Expression<double>> _det_F;
+  /// Assemble R(u) into the owned and ghost entries of f, without sending ghosts to owners.
+  void assemble_local(Vec f) const;
+  Vec _x = nullptr; // PETSc view of _u's coefficients (shares memory, with ghosts)
+};
+
+} // namespace gelx
+
+namespace gelx
+{
+/// Resultant force and moment (about the origin, on the deformed configuration) of the
+/// reactions on the facets tagged `tag`, from the internal forces at constrained dofs.
+/// For a plain (blocked) displacement space. Collective.
+struct Resultant
+{
+  std::array<double, 3> force{};
+  std::array<double, 3> moment{};
+};
+/// The value of a functional (a rank-0 form) summed over all ranks. Collective.
+double assemble_global_scalar(const dolfinx::fem::Form<double>& M);
+
+Resultant boundary_resultant(const NonlinearProblem& problem,
+                             const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags, int tag);
+} // namespace gelx

@@ -1,0 +1,62 @@
+#pragma once
+/// @file support.h
+/// What the verification programs share: a tagged box mesh and number checks that count
+/// failures and print every measured value next to its reference.
+
+#include <array>
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/mesh/Mesh.h>
+#include <dolfinx/mesh/MeshTags.h>
+#include <memory>
+#include <mpi.h>
+#include <string>
+
+namespace gelx::test
+{
+
+/// Tags of the faces of a box [0, L0] x [0, L1] x [0, L2].
+enum BoxFace : int
+{
+  x_min = 1,
+  x_max = 2,
+  y_min = 3,
+  y_max = 4,
+  z_min = 5,
+  z_max = 6
+};
+
+struct TaggedBox
+{
+  std::shared_ptr<dolfinx::mesh::Mesh> mesh;
+  std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> facets;
+};
+
+/// Tetrahedral mesh of the box with n cells along each edge and its faces tagged (BoxFace).
+TaggedBox tagged_box(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n);
+
+/// Smallest and largest value of component `c` of a vector function at its dofs on the facets
+/// tagged `tag` (all ranks).
+std::pair<double, double> component_range(const dolfinx::fem::Function<double>& u,
+                                          const dolfinx::mesh::MeshTags<std::int32_t>& facets,
+                                          int tag, int c);
+
+/// Records checks; the program's exit code is the failure count (0 = all passed).
+class Checks
+{
+public:
+  explicit Checks(MPI_Comm comm);
+  /// |value - reference| <= tol * |reference|
+  void relative(const std::string& what, double value, double reference, double tol);
+  /// |value - reference| <= tol
+  void absolute(const std::string& what, double value, double reference, double tol);
+  /// A condition with its measured description.
+  void require(const std::string& what, bool ok);
+  /// Prints "N passed, M failed" and returns the exit code.
+  int finish() const;
+
+private:
+  bool _root;
+  int _passed = 0, _failed = 0;
+};
+
+} // namespace gelx::test

@@ -17,9 +17,9 @@ NonlinearProblem::NonlinearProblem(std::shared_ptr<dolfinx::fem::Function<double
                                    std::shared_ptr<const dolfinx::fem::Form<double>> residual_form,
                                    std::shared_ptr<const dolfinx::fem::Form<double>> tangent_form,
                                    BCs bcs,
-                                   std::shared_ptr<const dolfinx::fem::Expression<double>> det_F)
+                                   std::shared_ptr<const dolfinx::fem::Expression<double>> admissibility)
     : _u(std::move(u)), _R(std::move(residual_form)), _J(std::move(tangent_form)),
-      _bcs(std::move(bcs)), _det_F(std::move(det_F))
+      _bcs(std::move(bcs)), _admissibility(std::move(admissibility))
 {
   _x = dolfinx::la::petsc::create_vector_wrap(*_u->x());
 }
@@ -91,19 +91,19 @@ void NonlinearProblem::tangent(Mat A)
   GELX_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
 }
 
-double NonlinearProblem::min_det_F() const
+double NonlinearProblem::admissibility_margin() const
 {
   double local_min = std::numeric_limits<double>::infinity();
-  if (_det_F)
+  if (_admissibility)
   {
-    const auto& mesh = *_det_F->mesh();
+    const auto& mesh = *_admissibility->mesh();
     const int tdim = mesh.topology().dim();
     const std::int32_t num_cells = mesh.topology().index_map(tdim)->size_local();
     std::vector<std::int32_t> cells(num_cells);
     std::iota(cells.begin(), cells.end(), 0);
-    const std::size_t num_points = _det_F->X().second[0];
+    const std::size_t num_points = _admissibility->X().second[0];
     xt::xtensor<double, 2> values({cells.size(), num_points});
-    _det_F->eval(cells, values);
+    _admissibility->eval(cells, values);
     for (double v : values)
       local_min = std::isnan(v) ? -std::numeric_limits<double>::infinity()
                                 : std::min(local_min, v);
@@ -113,7 +113,7 @@ double NonlinearProblem::min_det_F() const
   return global_min;
 }
 
-bool NonlinearProblem::admissible() const { return min_det_F() > 0; }
+bool NonlinearProblem::admissible() const { return admissibility_margin() > 0; }
 
 } // namespace gelx
 

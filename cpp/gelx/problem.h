@@ -55,11 +55,13 @@ public:
   /// @param tangent_form bilinear form dR/du
   /// @param bcs Dirichlet conditions on (sub-spaces of) u's space; their current values are
   ///        read at every residual evaluation
-  /// @param det_F optional Expression of det F at quadrature points, for the admissibility check
+  /// @param admissibility optional Expression, at quadrature points, of a quantity that must stay
+  ///        positive for the state to be physical: det F for a solid, J - phi0 for a gel whose
+  ///        energy has ln(1 - phi0/J). Iterates where it is <= 0 are rejected.
   NonlinearProblem(std::shared_ptr<dolfinx::fem::Function<double>> u,
                    std::shared_ptr<const dolfinx::fem::Form<double>> residual_form,
                    std::shared_ptr<const dolfinx::fem::Form<double>> tangent_form, BCs bcs,
-                   std::shared_ptr<const dolfinx::fem::Expression<double>> det_F = nullptr);
+                   std::shared_ptr<const dolfinx::fem::Expression<double>> admissibility = nullptr);
   ~NonlinearProblem() override;
   NonlinearProblem(const NonlinearProblem&) = delete;
   NonlinearProblem& operator=(const NonlinearProblem&) = delete;
@@ -72,8 +74,9 @@ public:
   Mat create_matrix() const override;
   bool admissible() const override;
 
-  /// Smallest det F over the quadrature points of all cells (all ranks); +inf without det_F.
-  double min_det_F() const;
+  /// Smallest value of the admissibility expression over the quadrature points of all cells
+  /// (all ranks); +inf without one.
+  double admissibility_margin() const;
 
   /// Internal force vector R(u) without Dirichlet rows zeroed: at equilibrium its entries on
   /// constrained dofs are the reaction forces.
@@ -86,7 +89,7 @@ private:
   std::shared_ptr<dolfinx::fem::Function<double>> _u;
   std::shared_ptr<const dolfinx::fem::Form<double>> _R, _J;
   BCs _bcs;
-  std::shared_ptr<const dolfinx::fem::Expression<double>> _det_F;
+  std::shared_ptr<const dolfinx::fem::Expression<double>> _admissibility;
   /// Assemble R(u) into the owned and ghost entries of f, without sending ghosts to owners.
   void assemble_local(Vec f) const;
   Vec _x = nullptr; // PETSc view of _u's coefficients (shares memory, with ghosts)

@@ -106,7 +106,7 @@ int main(int argc, char* argv[])
               {"axial_force", top_load.force[2]},
               {"torque", top_load.moment[2]},
               {"energy", gelx::assemble_global_scalar(*energy)},
-              {"min_det_F", problem.min_det_F()},
+              {"min_det_F", problem.admissibility_margin()},
               {"newton_iterations", s.newton.iterations},
               {"linear_iterations", s.newton.linear_iterations},
               {"cutbacks", s.cutbacks},

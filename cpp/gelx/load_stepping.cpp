@@ -15,13 +15,15 @@ void LoadSteppingOptions::declare(Parameters& p)
   const LoadSteppingOptions d;
   auto in_unit_interval = [](double v) { return v > 0 && v <= 1 ? "" : "must be in (0, 1]"; };
   p.add("load stepping", "dt", d.dt, "first load-factor step", in_unit_interval);
-  p.add("load stepping", "dt_min", d.dt_min, "smallest step (= dt disables cut-back)",
-        in_unit_interval);
+  p.add("load stepping", "dt_min", d.dt_min, "smallest step", in_unit_interval);
   p.add("load stepping", "dt_max", d.dt_max, "largest step", in_unit_interval);
   p.add("load stepping", "dt_grow", d.grow, "growth factor after an easy step",
         [](double v) { return v >= 1 ? "" : "must be at least 1"; });
   p.add("load stepping", "easy_iterations", d.easy_iterations,
         "Newton iterations up to which a step counts as easy", Parameters::at_least_one);
+  p.add("load stepping", "max_cutbacks", d.max_cutbacks,
+        "step cut-backs allowed within one step (0 disables cut-back)",
+        [](int v) { return v >= 0 ? "" : "must not be negative"; });
 }
 
 LoadSteppingOptions LoadSteppingOptions::from(const Parameters& p)
@@ -32,6 +34,7 @@ LoadSteppingOptions LoadSteppingOptions::from(const Parameters& p)
   o.dt_max = p.real("dt_max");
   o.grow = p.real("dt_grow");
   o.easy_iterations = p.integer("easy_iterations");
+  o.max_cutbacks = p.integer("max_cutbacks");
   if (o.dt_min > o.dt || o.dt > o.dt_max)
     throw InputError("load stepping needs dt_min <= dt <= dt_max");
   return o;
@@ -46,7 +49,12 @@ LoadStepper::LoadStepper(NonlinearSystem& system, NewtonSolver& newton,
 void LoadStepper::run(const std::function<void(const StepRecord&)>& on_step)
 {
   const bool root = dolfinx::MPI::rank(PetscObjectComm((PetscObject)_newton.ksp())) == 0;
-  Vec saved = _system.create_vector();
+  // The last converged state, restored after a failed attempt
+  struct SavedState
+  {
+    Vec v;
+    ~SavedState() { VecDestroy(&v); }
+  } saved{_system.create_vector()};
   double t = 0, dt = _options.dt;
   int step = 0, cutbacks = 0;
   auto start = std::chrono::steady_clock::now();
@@ -57,30 +65,31 @@ void LoadStepper::run(const std::function<void(const StepRecord&)>& on_step)
     // Stretch the last step a little rather than leave a sliver of load for an extra step
     if (t + 1.25 * dt >= t_end)
       dt = t_end - t;
-    GELX_PETSC(VecCopy(_system.unknowns(), saved));
+    GELX_PETSC(VecCopy(_system.unknowns(), saved.v));
     if (root)
       std::printf("  step %d: t = %.6g (dt = %.4g)\n", step + 1, t + dt, dt);
     _apply_load(t + dt);
     NewtonReport report = _newton.solve(_system);
     if (!report.converged)
     {
-      GELX_PETSC(VecCopy(saved, _system.unknowns()));
+      GELX_PETSC(VecCopy(saved.v, _system.unknowns()));
       _system.unknowns_changed();
-      ++cutbacks;
-      ++_total_cutbacks;
-      if (dt * _options.cut < _options.dt_min * (1 - 1e-12))
+      if (cutbacks == _options.max_cutbacks
+          || dt * _options.cut < _options.dt_min * (1 - 1e-12))
       {
         _apply_load(t); // leave loads consistent with the last converged state
-        VecDestroy(&saved);
         std::ostringstream msg;
         msg << "load step from t = " << t << " to " << t + dt << " failed (" << report.reason
-            << ") and the step may not be cut below dt_min = " << _options.dt_min;
+            << ") after " << cutbacks << " cut-backs (max_cutbacks = " << _options.max_cutbacks
+            << ", dt_min = " << _options.dt_min << ")";
         throw ConvergenceError(msg.str());
       }
       if (root)
         std::printf("  step failed (%s): cutting dt to %.4g\n", report.reason.c_str(),
                     dt * _options.cut);
       dt *= _options.cut;
+      ++cutbacks;
+      ++_total_cutbacks;
       continue;
     }
     t += dt;
@@ -94,7 +103,6 @@ void LoadStepper::run(const std::function<void(const StepRecord&)>& on_step)
     if (report.iterations <= _options.easy_iterations)
       dt = std::min(dt * _options.grow, _options.dt_max);
   }
-  VecDestroy(&saved);
 }
 
 } // namespace gelx

@@ -21,11 +21,12 @@ public:
 struct LoadSteppingOptions
 {
   double dt = 0.1;         ///< first step
-  double dt_min = 1e-4;    ///< smallest step before giving up (dt_min = dt disables cut-back)
+  double dt_min = 1e-4;    ///< smallest step before giving up
   double dt_max = 0.25;    ///< largest step
   double grow = 1.5;       ///< step growth after an easy step
   double cut = 0.5;        ///< step reduction after a failed step
   int easy_iterations = 5; ///< a step that converged in at most this many iterations is easy
+  int max_cutbacks = 12;   ///< cut-backs allowed within one step (0 disables cut-back)
 
   /// Declare the options as scene parameters (section "load stepping").
   static void declare(Parameters& p);
@@ -52,7 +53,8 @@ public:
               std::function<void(double)> apply_load);
 
   /// Run to t = 1, calling `on_step` after every converged step (write output there: a step
-  /// reported is complete). Throws ConvergenceError when the step falls below dt_min.
+  /// reported is complete). Throws ConvergenceError when a step fails with no cut-back left
+  /// or when cutting would take the step below dt_min.
   void run(const std::function<void(const StepRecord&)>& on_step);
 
   int total_cutbacks() const { return _total_cutbacks; }

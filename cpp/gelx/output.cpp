@@ -110,8 +110,9 @@ ResultsWriter::ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
     ok = !ec;
-    // A previous run's step table would otherwise be appended to
+    // Results of a previous run in the same folder must not pass for this run's
     std::filesystem::remove(folder / "steps.csv", ec);
+    std::filesystem::remove(folder / "summary.json", ec);
   }
   MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
   if (!ok)

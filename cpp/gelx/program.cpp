@@ -30,6 +30,7 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
   for (auto& a : rest)
     petsc_argv.push_back(a.data());
   int petsc_argc = static_cast<int>(petsc_argv.size());
+  petsc_argv.push_back(nullptr); // MPI reads argv up to a null entry
   char** petsc_args = petsc_argv.data();
   PetscInitialize(&petsc_argc, &petsc_args, nullptr, nullptr);
   // dolfinx logs at INFO level by default; warnings and errors are what a user needs

@@ -95,7 +95,7 @@ int main(int argc, char* argv[])
     gelx::CellField energy_density("energy_density", expression(expression_block_psi));
 
     // 6. Follow the load path, recording each converged step
-    nlohmann::json last;
+    nlohmann::json last = nlohmann::json::object();
     int newton_total = 0;
     auto on_step = [&](const gelx::StepRecord& s)
     {
@@ -122,25 +122,38 @@ int main(int argc, char* argv[])
     };
     gelx::LoadStepper stepper(problem, newton, stepping, [&](double t) { bcs.update(t); });
     const auto start = std::chrono::steady_clock::now();
-    stepper.run(on_step);
+    auto summary = [&](const std::string& status)
+    {
+      const auto dofs = V->dofmap()->index_map;
+      writer.write_summary(
+          {{"scene", "block"},
+           {"status", status},
+           {"parameters", prm.to_json()},
+           {"versions", gelx::software_versions()},
+           {"mpi_ranks", dolfinx::MPI::size(comm)},
+           {"num_dofs", dofs->size_global() * V->dofmap()->index_map_bs()},
+           {"num_cells", geo.mesh->topology().index_map(3)->size_global()},
+           {"steps", last.value("step", 0)},
+           {"newton_iterations", newton_total},
+           {"cutbacks", stepper.total_cutbacks()},
+           {"wall_time",
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
+           {"axial_force", last.value("axial_force", 0.0)},
+           {"torque", last.value("torque", 0.0)},
+           {"energy", last.value("energy", 0.0)},
+           {"min_det_F", last.value("min_det_F", 1.0)}});
+    };
+    try
+    {
+      stepper.run(on_step);
+    }
+    catch (const gelx::ConvergenceError& e)
+    {
+      summary(std::string("failed: ") + e.what()); // the completed steps stay on record
+      throw;
+    }
 
-    // 7. Summary: parameters, versions, size, cost and the quantities of interest
-    const auto dofs = V->dofmap()->index_map;
-    writer.write_summary(
-        {{"scene", "block"},
-         {"parameters", prm.to_json()},
-         {"versions", gelx::software_versions()},
-         {"mpi_ranks", dolfinx::MPI::size(comm)},
-         {"num_dofs", dofs->size_global() * V->dofmap()->index_map_bs()},
-         {"num_cells", geo.mesh->topology().index_map(3)->size_global()},
-         {"steps", last["step"]},
-         {"newton_iterations", newton_total},
-         {"cutbacks", stepper.total_cutbacks()},
-         {"wall_time",
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
-         {"axial_force", last["axial_force"]},
-         {"torque", last["torque"]},
-         {"energy", last["energy"]},
-         {"min_det_F", last["min_det_F"]}});
+    // 7. Summary: parameters, versions, size, cost and the quantities of interest at t = 1
+    summary("completed");
   });
 }

@@ -1,0 +1,28 @@
+"""Number checks shared by the Python tests: print each measured value beside its reference and
+close with the line 'N passed, M failed'."""
+import sys
+
+
+class Checks:
+    def __init__(self):
+        self.passed = 0
+        self.failed = 0
+
+    def require(self, what, ok):
+        self.passed += bool(ok)
+        self.failed += not ok
+        print(("PASS  " if ok else "FAIL  ") + what)
+
+    def absolute(self, what, value, reference, tol):
+        err = abs(value - reference)
+        self.require(f"{what}: {value:.12g} (reference {reference:.12g}, error {err:.2e}, "
+                     f"tol {tol:.1e})", err <= tol)
+
+    def relative(self, what, value, reference, tol):
+        err = abs(value - reference) / abs(reference)
+        self.require(f"{what}: {value:.15g} (reference {reference:.15g}, relative error "
+                     f"{err:.2e}, tol {tol:.1e})", err <= tol)
+
+    def finish(self):
+        print(f"{self.passed} passed, {self.failed} failed")
+        sys.exit(1 if self.failed else 0)

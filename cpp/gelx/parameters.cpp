@@ -230,6 +230,9 @@ std::string Parameters::table(bool with_help) const
       sections.push_back(s);
     by_section[s].push_back(name);
   }
+  std::size_t value_width = 14;
+  for (const auto& [name, e] : _entries)
+    value_width = std::max(value_width, to_text(e.value).size() + 2);
   std::ostringstream out;
   for (const auto& s : sections)
   {
@@ -237,7 +240,7 @@ std::string Parameters::table(bool with_help) const
     for (const auto& name : by_section[s])
     {
       const Entry& e = _entries.at(name);
-      out << "  --" << std::left << std::setw(22) << name << std::setw(14) << to_text(e.value);
+      out << "  --" << std::left << std::setw(22) << name << std::setw(value_width) << to_text(e.value);
       if (with_help)
         out << e.help;
       out << "\n";

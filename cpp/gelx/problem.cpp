@@ -4,6 +4,7 @@
 #include <cmath>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
+#include <dolfinx/la/Vector.h>
 #include <dolfinx/la/petsc.h>
 #include <dolfinx/mesh/Mesh.h>
 #include <limits>
@@ -43,9 +44,54 @@ Vec NonlinearProblem::create_vector() const
   return r;
 }
 
+namespace
+{
+/// The six rigid-body modes of a 3-D vector space, orthonormalised: the near-nullspace that
+/// lets algebraic multigrid (-newton_pc_type gamg) build good coarse spaces for elasticity.
+MatNullSpace rigid_body_modes(const dolfinx::fem::FunctionSpace& V, Vec like)
+{
+  const auto map = V.dofmap()->index_map;
+  const std::int32_t num_nodes = map->size_local();
+  const std::vector<double> X = V.tabulate_dof_coordinates(false);
+  std::vector<dolfinx::la::Vector<double>> basis(6, dolfinx::la::Vector<double>(map, 3));
+  for (std::int32_t n = 0; n < num_nodes; ++n)
+  {
+    const double x = X[3 * n], y = X[3 * n + 1], z = X[3 * n + 2];
+    const double modes[6][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1},
+                                {-y, x, 0}, {z, 0, -x}, {0, -z, y}};
+    for (int m = 0; m < 6; ++m)
+      for (int i = 0; i < 3; ++i)
+        basis[m].mutable_array()[3 * n + i] = modes[m][i];
+  }
+  dolfinx::la::orthonormalize(std::span(basis));
+  std::vector<Vec> vecs(6);
+  for (int m = 0; m < 6; ++m)
+  {
+    GELX_PETSC(VecDuplicate(like, &vecs[m]));
+    PetscScalar* a;
+    GELX_PETSC(VecGetArray(vecs[m], &a));
+    std::copy_n(basis[m].array().begin(), 3 * num_nodes, a);
+    GELX_PETSC(VecRestoreArray(vecs[m], &a));
+  }
+  MatNullSpace space;
+  GELX_PETSC(MatNullSpaceCreate(V.mesh()->comm(), PETSC_FALSE, 6, vecs.data(), &space));
+  for (Vec& v : vecs)
+    VecDestroy(&v);
+  return space;
+}
+} // namespace
+
 Mat NonlinearProblem::create_matrix() const
 {
-  return dolfinx::fem::petsc::create_matrix(*_J);
+  Mat A = dolfinx::fem::petsc::create_matrix(*_J);
+  const auto& V = *_u->function_space();
+  if (V.dofmap()->index_map_bs() == 3 && V.element()->num_sub_elements() == 3)
+  {
+    MatNullSpace modes = rigid_body_modes(V, _x);
+    GELX_PETSC(MatSetNearNullSpace(A, modes));
+    GELX_PETSC(MatNullSpaceDestroy(&modes));
+  }
+  return A;
 }
 
 void NonlinearProblem::assemble_local(Vec f) const

@@ -12,7 +12,8 @@ namespace gelx
 int run_program(int argc, char* argv[], const std::string& name, Parameters& parameters,
                 const std::function<void(MPI_Comm)>& body)
 {
-  parameters.add("output", "output", ("results/" + name).c_str(), "folder for the results");
+  const std::string scene = name.rfind("gelx-", 0) == 0 ? name.substr(5) : name;
+  parameters.add("output", "output", ("results/" + scene).c_str(), "folder for the results");
   std::vector<std::string> rest;
   bool help = false;
   std::string input_error;

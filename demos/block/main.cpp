@@ -2,13 +2,13 @@
 //
 // Sample runs:
 //   ./gelx run block
-//   ./gelx run block --stretch 2 --twist 180 --h 0.15
+//   ./gelx run block --stretch 2 --twist 180 --h 0.15 --degree 1
 //   mpirun -np 2 build/demos/block/gelx-block --output results/block-np2
 //   ./gelx run block -newton_ksp_type gmres -newton_pc_type gamg    (iterative linear solver)
 //
 // A W x W x H block of the compressible neo-Hookean solid of thesis Eq. 3.1,
 //   U = G/2 (J^(-2/3) tr C - 3) + K/2 (J - 1)^2,
-// discretised with P2 tetrahedra (forms/block.py), stands clamped on z = 0. Its top face is moved
+// discretised with P1 or P2 tetrahedra (forms/block.py), stands clamped on z = 0. Its top face is moved
 // rigidly: lifted to the axial stretch `stretch` and turned by `twist` degrees about the block's
 // axis, both in proportion to the load factor t in [0, 1]. Adaptive load stepping follows t to 1.
 // At every step the run records the axial force and the torque on the top face and the stored
@@ -26,6 +26,26 @@
 
 using namespace dolfinx;
 
+namespace
+{
+/// The generated forms and expressions of forms/block.py for one displacement degree.
+struct BlockForms
+{
+  ufcx_function_space* (*space)(const char*);
+  const char* u;
+  ufcx_form *residual, *tangent, *energy;
+  ufcx_expression *stress, *psi, *det_F;
+};
+const BlockForms block_p1{functionspace_form_block_residual_p1, "u_p1", form_block_residual_p1,
+                          form_block_tangent_p1, form_block_energy_p1,
+                          expression_block_stress_p1, expression_block_psi_p1,
+                          expression_block_det_F_p1};
+const BlockForms block_p2{functionspace_form_block_residual_p2, "u_p2", form_block_residual_p2,
+                          form_block_tangent_p2, form_block_energy_p2,
+                          expression_block_stress_p2, expression_block_psi_p2,
+                          expression_block_det_F_p2};
+} // namespace
+
 int main(int argc, char* argv[])
 {
   // 1. Scene parameters, with their defaults and validity checks
@@ -34,6 +54,8 @@ int main(int argc, char* argv[])
   prm.add("geometry", "height", 2.0, "block height H [mm]", gelx::Parameters::positive);
   prm.add("geometry", "h", 0.25, "mesh size [mm]", gelx::Parameters::positive);
   prm.add("geometry", "mesh", GELX_MESHES "/block.geo", "gmsh geometry file");
+  prm.add("discretisation", "degree", 2, "polynomial degree of the displacement (1 or 2)",
+          [](int p) { return p == 1 || p == 2 ? "" : "must be 1 or 2"; });
   prm.add("material", "G", 1.0, "shear modulus [MPa]", gelx::Parameters::positive);
   prm.add("material", "K", 10.0, "bulk modulus [MPa]", gelx::Parameters::positive);
   prm.add("load", "stretch", 1.5, "final axial stretch of the block",
@@ -52,8 +74,9 @@ int main(int argc, char* argv[])
         comm, prm.text("mesh"), {{"W", prm.real("width")}, {"H", H}, {"h", prm.real("h")}});
 
     // 3. Displacement space, material constants, residual and tangent (forms/block.py)
+    const BlockForms& forms = prm.integer("degree") == 1 ? block_p1 : block_p2;
     auto V = std::make_shared<fem::FunctionSpace>(
-        fem::create_functionspace(functionspace_form_block_residual, "u", geo.mesh));
+        fem::create_functionspace(forms.space, forms.u, geo.mesh));
     auto u = std::make_shared<fem::Function<double>>(V);
     auto G = std::make_shared<fem::Constant<double>>(prm.real("G"));
     auto K = std::make_shared<fem::Constant<double>>(prm.real("K"));
@@ -62,15 +85,15 @@ int main(int argc, char* argv[])
     auto form = [&](ufcx_form* f, std::vector<std::shared_ptr<const fem::FunctionSpace>> V_)
     {
       return std::make_shared<fem::Form<double>>(
-          fem::create_form<double>(*f, V_, {{"u", u}}, material, {}, geo.mesh));
+          fem::create_form<double>(*f, V_, {{forms.u, u}}, material, {}, geo.mesh));
     };
-    auto residual = form(form_block_residual, {V});
-    auto tangent = form(form_block_tangent, {V, V});
-    auto energy = form(form_block_energy, {});
+    auto residual = form(forms.residual, {V});
+    auto tangent = form(forms.tangent, {V, V});
+    auto energy = form(forms.energy, {});
     auto expression = [&](ufcx_expression* e)
     {
       return std::make_shared<fem::Expression<double>>(
-          fem::create_expression<double>(*e, {{"u", u}}, material, geo.mesh));
+          fem::create_expression<double>(*e, {{forms.u, u}}, material, geo.mesh));
     };
 
     // 4. Boundary conditions: bottom clamped; top lifted by (stretch - 1) H t and turned by
@@ -85,14 +108,14 @@ int main(int argc, char* argv[])
     bcs.prescribe(top, 2, [=](double t, auto&) { return (stretch - 1) * H * t; });
 
     gelx::NonlinearProblem problem(u, residual, tangent, bcs.bcs(),
-                                   expression(expression_block_det_F));
+                                   expression(forms.det_F));
     gelx::NewtonSolver newton(comm);
 
     // 5. Output: displacement at the nodes, stress and energy density per cell
     gelx::ResultsWriter writer(comm, prm.text("output"), geo.mesh);
     gelx::NodalField displacement("displacement", u);
-    gelx::CellField stress("cauchy_stress", expression(expression_block_stress));
-    gelx::CellField energy_density("energy_density", expression(expression_block_psi));
+    gelx::CellField stress("cauchy_stress", expression(forms.stress));
+    gelx::CellField energy_density("energy_density", expression(forms.psi));
 
     // 6. Follow the load path, recording each converged step
     nlohmann::json last = nlohmann::json::object();

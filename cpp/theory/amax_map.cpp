@@ -53,19 +53,19 @@ AmaxMap::Peak AmaxMap::peak_at_eps(double eps0) const
   return p;
 }
 
+AmaxMap::AmaxMap(double n_, double alpha0_, const std::vector<double>& phi_i_,
+                 const std::vector<double>& eps_)
+    : n(n_), alpha0(alpha0_), phi_i(phi_i_), eps(eps_),
+      A(phi_i_.size() * eps_.size(), std::numeric_limits<double>::quiet_NaN()),
+      phi_prime_i(A), phi_prime_f(A)
+{
+}
+
 AmaxMap amax_map(double n, double a0, const std::vector<double>& phi_i,
                  const std::vector<double>& eps)
 {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  AmaxMap m;
-  m.n = n;
-  m.alpha0 = a0;
-  m.phi_i = phi_i;
-  m.eps = eps;
+  AmaxMap m(n, a0, phi_i, eps);
   const std::size_t ne = eps.size();
-  m.A.assign(phi_i.size() * ne, nan);
-  m.phi_prime_i = m.A;
-  m.phi_prime_f = m.A;
   const double a3 = a0 * a0 * a0;
   for (std::size_t i = 0; i < phi_i.size(); ++i)
   {

@@ -21,6 +21,10 @@ struct AmaxMap
   int undefined = 0;            ///< grid points with phi_f = phi_i/alpha0^3 >= 1 (or no T)
   int non_unique = 0;           ///< grid points where a root was not unique
 
+  /// A map over the grid with every entry undefined (NaN), to be filled.
+  AmaxMap(double n, double alpha0, const std::vector<double>& phi_i,
+          const std::vector<double>& eps);
+
   double at(std::size_t i, std::size_t j) const { return A[i * eps.size() + j]; }
 
   /// Location of the largest finite A over the whole map, or over the column nearest eps0.

@@ -119,15 +119,8 @@ AmaxMap peo_amax_map(const PeoModel& model, double n, double a0,
                      double T_lo, double T_hi)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  AmaxMap m;
-  m.n = n;
-  m.alpha0 = a0;
-  m.phi_i = phi_i;
-  m.eps = eps;
+  AmaxMap m(n, a0, phi_i, eps);
   const std::size_t ne = eps.size();
-  m.A.assign(phi_i.size() * ne, nan);
-  m.phi_prime_i = m.A;
-  m.phi_prime_f = m.A;
   m.T_i.assign(phi_i.size(), nan);
   m.T_f = m.T_i;
   for (std::size_t i = 0; i < phi_i.size(); ++i)

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <dolfinx/common/MPI.h>
+#include <dolfinx/common/log.h>
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/mesh/generation.h>
 #include <dolfinx/mesh/utils.h>
@@ -64,7 +65,11 @@ std::pair<double, double> component_range(const dolfinx::fem::Function<double>& 
   return {lo, hi};
 }
 
-Checks::Checks(MPI_Comm comm) : _root(dolfinx::MPI::rank(comm) == 0) {}
+Checks::Checks(MPI_Comm comm) : _root(dolfinx::MPI::rank(comm) == 0)
+{
+  // dolfinx logs at INFO level by default; the checks are what a test run should show
+  loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
+}
 
 void Checks::require(const std::string& what, bool ok)
 {

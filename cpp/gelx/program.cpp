@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <dolfinx/common/log.h>
 #include <iostream>
-#include <petscsys.h>
+#include <slepcsys.h>
 
 namespace gelx
 {
@@ -33,7 +33,7 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
   int petsc_argc = static_cast<int>(petsc_argv.size());
   petsc_argv.push_back(nullptr); // MPI reads argv up to a null entry
   char** petsc_args = petsc_argv.data();
-  PetscInitialize(&petsc_argc, &petsc_args, nullptr, nullptr);
+  SlepcInitialize(&petsc_argc, &petsc_args, nullptr, nullptr);
   // dolfinx logs at INFO level by default; warnings and errors are what a user needs
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
   int rank = 0;
@@ -79,7 +79,7 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
       MPI_Abort(PETSC_COMM_WORLD, 1);
     }
   }
-  PetscFinalize();
+  SlepcFinalize();
   return status;
 }
 

@@ -1,0 +1,119 @@
+#include "buckling.h"
+#include "petsc_utils.h"
+
+#include <algorithm>
+#include <cmath>
+#include <dolfinx/common/IndexMap.h>
+#include <dolfinx/fem/DofMap.h>
+#include <dolfinx/fem/FunctionSpace.h>
+#include <dolfinx/la/petsc.h>
+#include <slepceps.h>
+
+namespace gelx
+{
+
+LinearBuckling::LinearBuckling(MPI_Comm comm, const std::string& prefix)
+    : _comm(comm), _prefix(prefix)
+{
+  set_default_option(prefix, "st_ksp_type", "preonly");
+  set_default_option(prefix, "st_pc_type", "lu");
+  set_default_option(prefix, "st_pc_factor_mat_solver_type", "mumps");
+}
+
+std::vector<BucklingMode>
+LinearBuckling::solve(Mat K, Mat K_perturbed, int num_modes,
+                      std::shared_ptr<const dolfinx::fem::FunctionSpace> space)
+{
+  // -K_D = K - K_perturbed; Dirichlet rows cancel (identity in both)
+  Mat minus_KD;
+  GELX_PETSC(MatDuplicate(K, MAT_COPY_VALUES, &minus_KD));
+  GELX_PETSC(MatAXPY(minus_KD, -1.0, K_perturbed, DIFFERENT_NONZERO_PATTERN));
+
+  EPS eps;
+  GELX_PETSC(EPSCreate(_comm, &eps));
+  GELX_PETSC(EPSSetOptionsPrefix(eps, _prefix.c_str()));
+  GELX_PETSC(EPSSetOperators(eps, minus_KD, K));
+  GELX_PETSC(EPSSetProblemType(eps, EPS_GHEP));
+  GELX_PETSC(EPSSetWhichEigenpairs(eps, EPS_LARGEST_REAL));
+  GELX_PETSC(EPSSetDimensions(eps, num_modes, PETSC_DEFAULT, PETSC_DEFAULT));
+  GELX_PETSC(EPSSetTolerances(eps, 1e-10, 500));
+  GELX_PETSC(EPSSetFromOptions(eps));
+  GELX_PETSC(EPSSolve(eps));
+  PetscInt converged;
+  GELX_PETSC(EPSGetConverged(eps, &converged));
+
+  std::vector<BucklingMode> modes;
+  Vec v;
+  GELX_PETSC(MatCreateVecs(K, &v, nullptr));
+  for (PetscInt i = 0; i < converged; ++i)
+  {
+    PetscScalar theta;
+    GELX_PETSC(EPSGetEigenpair(eps, i, &theta, nullptr, v, nullptr));
+    if (theta <= 0) // compression-free modes: no buckling under this load direction
+      continue;
+    auto shape = std::make_shared<dolfinx::fem::Function<double>>(space);
+    const PetscScalar* a;
+    GELX_PETSC(VecGetArrayRead(v, &a));
+    const std::int32_t n = space->dofmap()->index_map->size_local()
+                           * space->dofmap()->index_map_bs();
+    std::copy_n(a, n, shape->x()->mutable_array().begin());
+    GELX_PETSC(VecRestoreArrayRead(v, &a));
+    shape->x()->scatter_fwd();
+    double local_max = 0, largest;
+    for (std::int32_t k = 0; k < n; ++k)
+      local_max = std::max(local_max, std::abs(shape->x()->array()[k]));
+    MPI_Allreduce(&local_max, &largest, 1, MPI_DOUBLE, MPI_MAX, _comm);
+    for (double& x : shape->x()->mutable_array())
+      x /= largest;
+    shape->name = "mode_" + std::to_string(modes.size() + 1);
+    modes.push_back({1.0 / theta, shape});
+  }
+  VecDestroy(&v);
+  EPSDestroy(&eps);
+  MatDestroy(&minus_KD);
+  std::sort(modes.begin(), modes.end(),
+            [](auto& a, auto& b) { return a.load_factor < b.load_factor; });
+  if (static_cast<int>(modes.size()) > num_modes)
+    modes.resize(num_modes);
+  return modes;
+}
+
+void seed_imperfection(dolfinx::mesh::Mesh& mesh, const std::vector<BucklingMode>& modes,
+                       const std::vector<double>& amplitudes)
+{
+  if (modes.size() != amplitudes.size())
+    throw std::runtime_error("seed_imperfection: one amplitude per mode is needed");
+  if (mesh.geometry().cmap().degree() != 1)
+    throw std::runtime_error("seed_imperfection: the mesh geometry must be linear");
+  const auto& x_dofmap = mesh.geometry().dofmap();
+  std::span<double> x = mesh.geometry().x();
+  const int tdim = mesh.topology().dim();
+  const std::int32_t num_cells = mesh.topology().index_map(tdim)->size_local()
+                                 + mesh.topology().index_map(tdim)->num_ghosts();
+  // Each node gets the mode's value at that vertex: vertex dofs of a Lagrange space come
+  // first in a cell's dof list, in the order of the cell's vertices.
+  std::vector<double> shift(x.size(), 0.0);
+  std::vector<bool> done(x.size() / 3, false);
+  for (std::int32_t c = 0; c < num_cells; ++c)
+  {
+    auto nodes = x_dofmap.links(c);
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+    {
+      if (done[nodes[i]])
+        continue;
+      done[nodes[i]] = true;
+      for (std::size_t m = 0; m < modes.size(); ++m)
+      {
+        const auto& f = *modes[m].shape;
+        const int bs = f.function_space()->dofmap()->bs();
+        const std::int32_t dof = f.function_space()->dofmap()->cell_dofs(c)[i];
+        for (int k = 0; k < bs; ++k)
+          shift[3 * nodes[i] + k] += amplitudes[m] * f.x()->array()[bs * dof + k];
+      }
+    }
+  }
+  for (std::size_t k = 0; k < x.size(); ++k)
+    x[k] += shift[k];
+}
+
+} // namespace gelx

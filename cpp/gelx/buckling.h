@@ -1,0 +1,54 @@
+#pragma once
+/// @file buckling.h
+/// Linear (eigenvalue) buckling about a base state, and imperfections seeded from its modes.
+
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/mesh/Mesh.h>
+#include <memory>
+#include <mpi.h>
+#include <petscmat.h>
+#include <string>
+#include <vector>
+
+namespace gelx
+{
+
+/// One buckling mode: the load factor lambda at which it appears and its shape (largest
+/// displacement component 1).
+struct BucklingMode
+{
+  double load_factor;
+  std::shared_ptr<dolfinx::fem::Function<double>> shape;
+};
+
+/// The linear pre-buckling eigenproblem of thesis Eq. 1.13, (K + lambda K_D) v = 0.
+///
+/// K is the tangent at the base state (load P_n) and K_D the differential stiffness of the
+/// perturbation load Q: the tangent at the state under P_n + Q minus K. The critical load is
+/// P_n + lambda Q. SLEPc solves the equivalent symmetric-definite problem
+///   -K_D v = theta K v,   lambda = 1/theta,
+/// for the largest theta, which needs K positive definite: a base state below the first
+/// critical load. Needs SLEPc initialised (run_program does it). Options prefix `buckling_` (e.g. `-buckling_eps_type krylovschur`); the inner
+/// solves with K default to MUMPS LU.
+class LinearBuckling
+{
+public:
+  explicit LinearBuckling(MPI_Comm comm, const std::string& prefix = "buckling_");
+
+  /// The `num_modes` lowest positive load factors and their modes, in increasing order.
+  /// `space` is the space of the tangents' unknowns.
+  std::vector<BucklingMode> solve(Mat K, Mat K_perturbed, int num_modes,
+                                  std::shared_ptr<const dolfinx::fem::FunctionSpace> space);
+
+private:
+  MPI_Comm _comm;
+  std::string _prefix;
+};
+
+/// Add the imperfection sum_i amplitude_i * mode_i to the mesh coordinates (as ABAQUS
+/// *IMPERFECTION does): each mode (largest component 1) is evaluated at the mesh nodes.
+/// For meshes with linear geometry and modes in a vector Lagrange space on that mesh.
+void seed_imperfection(dolfinx::mesh::Mesh& mesh, const std::vector<BucklingMode>& modes,
+                       const std::vector<double>& amplitudes);
+
+} // namespace gelx

@@ -1,0 +1,39 @@
+"""Slender column under a dead axial load: compressible neo-Hookean (Eq. 3.1), P2 tetrahedra.
+
+The load is a dead traction -q e_z on the facets tagged 2 (the top end). The functionals
+measure the symmetry of a buckling mode v about the column's mid-length z = L/2.
+"""
+import ufl
+import materials
+
+cell = "tetrahedron"
+degree = 2
+mesh = ufl.Mesh(ufl.VectorElement("Lagrange", cell, 1))
+V = ufl.FunctionSpace(mesh, ufl.VectorElement("Lagrange", cell, degree))
+x = ufl.SpatialCoordinate(mesh)
+
+u = ufl.Coefficient(V)
+G = ufl.Constant(mesh)
+K = ufl.Constant(mesh)
+q = ufl.Constant(mesh)  # axial traction on the top end (compressive when positive)
+
+F = materials.deformation_gradient(u)
+psi = materials.neo_hookean_compressible(F, G, K)
+dx = ufl.dx(metadata={"quadrature_degree": materials.quadrature_degree(degree)})
+ds = ufl.ds(metadata={"quadrature_degree": materials.quadrature_degree(degree)})
+v = ufl.TestFunction(V)
+residual = ufl.derivative(psi * dx, u, v) + q * v[2] * ds(2)
+tangent = ufl.derivative(residual, u, ufl.TrialFunction(V))
+
+# Symmetry of the lateral deflection v_x of a mode about z = L/2
+mode = ufl.Coefficient(V)
+half_length = ufl.Constant(mesh)
+mode_odd_part = mode[0] * (x[2] - half_length) * dx
+mode_odd_scale = abs(mode[0] * (x[2] - half_length)) * dx
+mode_even_part = mode[0] * dx
+mode_even_scale = abs(mode[0]) * dx
+
+det_F = ufl.det(F)  # admissibility: det F > 0
+
+forms = [residual, tangent, mode_odd_part, mode_odd_scale, mode_even_part, mode_even_scale]
+expressions = [(det_F, materials.quadrature_points(cell, materials.quadrature_degree(degree)))]

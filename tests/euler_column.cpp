@@ -15,7 +15,9 @@
 #include <cstdio>
 #include <dolfinx/fem/utils.h>
 #include <gelx/boundary.h>
+#include <gelx/arclength.h>
 #include <gelx/buckling.h>
+#include <gelx/petsc_utils.h>
 #include <gelx/load_stepping.h>
 #include <slepcsys.h>
 
@@ -32,11 +34,26 @@ struct Result
   std::vector<double> odd_ratio;   // |int v_x (z - L/2)| / int |v_x (z - L/2)| per mode
   std::vector<double> even_ratio;  // |int v_x| / int |v_x| per mode
   double largest_node_shift = 0;   // after seeding mode 1 with amplitude `imperfection`
+  // Post-buckling (clamped-free): points (tip deflection / L, P / P_cr) of the paths
+  std::vector<std::array<double, 2>> imperfect_path;
+  std::array<double, 2> bifurcation_bracket{NAN, NAN}; // P/P_cr before and after detection
 };
+
+/// P/P_cr of the cantilever elastica at tip deflection d/L (bisection on the modulus k)
+double elastica_load_ratio(double d_over_L)
+{
+  double lo = 1e-12, hi = 0.8; // 2k/K(k) increases on (0, 0.8), up to d/L = 0.74
+  for (int i = 0; i < 100; ++i)
+  {
+    const double k = 0.5 * (lo + hi);
+    (2 * k / std::comp_ellint_1(k) < d_over_L ? lo : hi) = k;
+  }
+  return std::pow(2 * std::comp_ellint_1(0.5 * (lo + hi)) / M_PI, 2);
+}
 
 constexpr double imperfection = 0.01 * tx;
 
-Result buckle(MPI_Comm comm, std::array<std::size_t, 3> n, bool top_held)
+Result buckle(MPI_Comm comm, std::array<std::size_t, 3> n, bool top_held, bool post_buckling)
 {
   auto box = gelx::test::tagged_box(comm, {tx, ty, L}, n);
   auto V = std::make_shared<fem::FunctionSpace>(
@@ -109,14 +126,58 @@ Result buckle(MPI_Comm comm, std::array<std::size_t, 3> n, bool top_held)
   MatDestroy(&K0);
   MatDestroy(&KQ);
 
+  Result r;
+  // Post-buckling paths, load factor lambda = P / P_cr (of this discretisation)
+  const double q_cr = modes.at(0).load_factor * Q;
+  if (post_buckling)
+  {
+    // (1) Perfect column: continue until the tangent's eigenvalue nearest zero changes sign
+    u->x()->set(0.0);
+    q->value = {0.0};
+    // Steps of 0.1 in P/P_cr: psi = 1 weighs the load in the constraint, since the straight
+    // column barely moves
+    gelx::set_default_option("arclength_", "monitor", "0");
+    PetscOptionsSetValue(nullptr, "-arclength_psi", "1");
+    PetscOptionsSetValue(nullptr, "-arclength_ds", "0.1");
+    PetscOptionsSetValue(nullptr, "-arclength_ds_max", "0.1");
+    PetscOptionsSetValue(nullptr, "-arclength_stability", "1");
+    gelx::ArcLength straight(comm, problem, [&](double l) { q->value = {l * q_cr}; });
+    double lambda_before = 0, lambda_at = NAN;
+    straight.run(
+        0.0, 50, [&](const gelx::PathPoint& pt)
+        { (pt.bifurcation ? lambda_at : lambda_before) = pt.load_factor; },
+        [&](const gelx::PathPoint& pt) { return pt.bifurcation; });
+    r.bifurcation_bracket = {lambda_before, lambda_at};
+  }
+
   // Seed mode 1 as a geometric imperfection: the nodes move by at most its amplitude
   const std::vector<double> x0(box.mesh->geometry().x().begin(), box.mesh->geometry().x().end());
   gelx::seed_imperfection(*box.mesh, {modes.at(0)}, {imperfection});
-  Result r;
   for (std::size_t k = 0; k < x0.size(); ++k)
     r.largest_node_shift
         = std::max(r.largest_node_shift, std::abs(box.mesh->geometry().x()[k] - x0[k]));
   MPI_Allreduce(MPI_IN_PLACE, &r.largest_node_shift, 1, MPI_DOUBLE, MPI_MAX, comm);
+  if (post_buckling) // (2) the imperfect column from the unloaded state to d/L = 0.3
+  {
+    u->x()->set(0.0);
+    q->value = {0.0};
+    // Cylindrical constraint on the displacement (its 2-norm over ~4e3 dofs reaches ~300)
+    PetscOptionsSetValue(nullptr, "-arclength_psi", "0");
+    PetscOptionsSetValue(nullptr, "-arclength_ds", "1");
+    PetscOptionsSetValue(nullptr, "-arclength_ds_max", "40");
+    PetscOptionsSetValue(nullptr, "-arclength_stability", "0");
+    gelx::ArcLength continuation(comm, problem, [&](double l) { q->value = {l * q_cr}; });
+    double tip = 0;
+    continuation.run(
+        0.0, 200,
+        [&](const gelx::PathPoint& pt)
+        {
+          auto [lo, hi] = gelx::test::component_range(*u, *box.facets, gelx::test::z_max, 0);
+          tip = std::max(std::abs(lo), std::abs(hi)) / L;
+          r.imperfect_path.push_back({tip, pt.load_factor});
+        },
+        [&](const gelx::PathPoint&) { return tip >= 0.3; });
+  }
 
   for (auto& m : modes)
   {
@@ -148,7 +209,8 @@ int main(int argc, char* argv[])
       std::vector<double> errors;
       for (auto n : meshes)
       {
-        Result r = buckle(comm, n, top_held);
+        const bool post_buckling = !top_held && n == meshes.front();
+        Result r = buckle(comm, n, top_held, post_buckling);
         const std::string level = name + ", mesh " + std::to_string(n[0]) + "x"
                                   + std::to_string(n[1]) + "x" + std::to_string(n[2]);
         errors.push_back(std::abs(r.loads.at(0) / P_euler - 1));
@@ -162,6 +224,21 @@ int main(int argc, char* argv[])
                         r.largest_node_shift, imperfection, 1e-3);
         checks.require(level + ": no node moves by more than the amplitude",
                        r.largest_node_shift <= imperfection * (1 + 1e-12));
+        if (post_buckling)
+        {
+          // The sign change is detected between the last stable and the first unstable point
+          checks.require(level + ": bifurcation detected between P/P_cr = "
+                             + std::to_string(r.bifurcation_bracket[0]) + " and "
+                             + std::to_string(r.bifurcation_bracket[1]),
+                         r.bifurcation_bracket[0] <= 1 && 1 <= r.bifurcation_bracket[1]);
+          // 2%: beyond beam theory (axial shortening and shear, O(r/L)^2 ~ 1e-3) the path
+          // differs from the elastica by the imperfection's effect, about 0.3% at d/L = 0.3
+          const auto [d, lambda] = r.imperfect_path.back();
+          checks.relative(level + ": imperfect column (" + std::to_string(r.imperfect_path.size())
+                              + " arc-length steps), P/P_cr at tip deflection d/L = "
+                              + std::to_string(d) + " against the elastica",
+                          lambda, elastica_load_ratio(d), 0.02);
+        }
         if (top_held)
         {
           // Mode 1 symmetric, mode 2 antisymmetric about mid-length. The box mesh is mirror

@@ -68,6 +68,7 @@ void ArcLength::run(double lambda0, int max_steps,
   const int target_it = int_option(_prefix, "target_it", 5);
   const double rtol = real_option(_prefix, "rtol", 1e-9);
   const bool monitor = int_option(_prefix, "monitor", 1) && dolfinx::MPI::rank(_comm) == 0;
+  const bool track_stability = int_option(_prefix, "stability", 0) != 0;
 
   Vec u = _problem.unknowns();
   double lambda = lambda0, s = 0, dlambda_prev = 0;
@@ -109,6 +110,7 @@ void ArcLength::run(double lambda0, int max_steps,
       GELX_PETSC(VecCopy(_b, _du));
       GELX_PETSC(VecScale(_du, dl));
       double Dl = dl;
+
 
       int it = 0;
       bool converged = false;
@@ -170,10 +172,19 @@ void ArcLength::run(double lambda0, int max_steps,
         GELX_PETSC(VecCopy(_du, _du_prev));
         dlambda_prev = Dl;
         have_direction = true;
+        const double previous_stability = point.stability;
         point = {step, lambda, s, it, cutbacks, previous * Dl < 0};
+        if (track_stability)
+        {
+          _problem.tangent(_K);
+          point.stability
+              = lowest_tangent_eigenpair(_comm, _K, _problem.u()->function_space()).load_factor;
+          point.bifurcation = !point.limit_point && previous_stability * point.stability < 0;
+        }
         if (monitor)
-          std::printf("  arc-length step %d: lambda = %.10g, s = %.6g, %d iterations%s\n", step,
-                      lambda, s, it, point.limit_point ? " (limit point passed)" : "");
+          std::printf("  arc-length step %d: lambda = %.10g, s = %.6g, %d iterations%s%s\n",
+                      step, lambda, s, it, point.limit_point ? " (limit point passed)" : "",
+                      point.bifurcation ? " (bifurcation passed)" : "");
         on_point(point);
         ds = std::min(ds_max, ds * std::clamp(std::sqrt(double(target_it) / std::max(it, 1)),
                                               0.5, 2.0));

@@ -2,7 +2,9 @@
 /// @file arclength.h
 /// Arc-length continuation (Riks / Crisfield) of R(u, lambda) = 0 through limit points.
 
+#include "buckling.h"
 #include "problem.h"
+#include <cmath>
 #include <functional>
 #include <mpi.h>
 #include <petscksp.h>
@@ -20,6 +22,8 @@ struct PathPoint
   int iterations = 0;       ///< corrector iterations
   int cutbacks = 0;         ///< arc-length halvings before this point converged
   bool limit_point = false; ///< lambda passed an extremum since the previous point
+  double stability = NAN;   ///< eigenvalue of the tangent nearest zero (with -arclength_stability)
+  bool bifurcation = false; ///< stability changed sign without a load extremum
 };
 
 /// Follows R(u, lambda) = 0 with the constraint |du|^2 + psi^2 dlambda^2 = ds^2 per step
@@ -35,7 +39,8 @@ struct PathPoint
 ///
 /// Options, prefix `arclength_`: ds (first arc length), ds_max, ds_min, psi, max_it,
 /// target_it (iterations per step the adaptation aims at), rtol (|R| <= rtol |dR/dlambda|),
-/// monitor; the linear solver reads `-arclength_ksp_*`, `-arclength_pc_*` (default MUMPS LU).
+/// monitor, stability (1: compute the tangent eigenvalue nearest zero at every point, to detect
+/// bifurcations; see lowest_tangent_eigenpair); the linear solver reads `-arclength_ksp_*`, `-arclength_pc_*` (default MUMPS LU).
 class ArcLength
 {
 public:

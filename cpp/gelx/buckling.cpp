@@ -11,6 +11,30 @@
 
 namespace gelx
 {
+namespace
+{
+/// The owned entries of v as a Function on `space`, scaled to largest component 1.
+std::shared_ptr<dolfinx::fem::Function<double>>
+normalised_function(Vec v, std::shared_ptr<const dolfinx::fem::FunctionSpace> space,
+                    MPI_Comm comm)
+{
+  auto f = std::make_shared<dolfinx::fem::Function<double>>(space);
+  const PetscScalar* a;
+  GELX_PETSC(VecGetArrayRead(v, &a));
+  const std::int32_t n
+      = space->dofmap()->index_map->size_local() * space->dofmap()->index_map_bs();
+  std::copy_n(a, n, f->x()->mutable_array().begin());
+  GELX_PETSC(VecRestoreArrayRead(v, &a));
+  f->x()->scatter_fwd();
+  double local_max = 0, largest;
+  for (std::int32_t k = 0; k < n; ++k)
+    local_max = std::max(local_max, std::abs(f->x()->array()[k]));
+  MPI_Allreduce(&local_max, &largest, 1, MPI_DOUBLE, MPI_MAX, comm);
+  for (double& x : f->x()->mutable_array())
+    x /= largest;
+  return f;
+}
+} // namespace
 
 LinearBuckling::LinearBuckling(MPI_Comm comm, const std::string& prefix)
     : _comm(comm), _prefix(prefix)
@@ -51,20 +75,7 @@ LinearBuckling::solve(Mat K, Mat K_perturbed, int num_modes,
     GELX_PETSC(EPSGetEigenpair(eps, i, &theta, nullptr, v, nullptr));
     if (theta <= 0) // compression-free modes: no buckling under this load direction
       continue;
-    auto shape = std::make_shared<dolfinx::fem::Function<double>>(space);
-    const PetscScalar* a;
-    GELX_PETSC(VecGetArrayRead(v, &a));
-    const std::int32_t n = space->dofmap()->index_map->size_local()
-                           * space->dofmap()->index_map_bs();
-    std::copy_n(a, n, shape->x()->mutable_array().begin());
-    GELX_PETSC(VecRestoreArrayRead(v, &a));
-    shape->x()->scatter_fwd();
-    double local_max = 0, largest;
-    for (std::int32_t k = 0; k < n; ++k)
-      local_max = std::max(local_max, std::abs(shape->x()->array()[k]));
-    MPI_Allreduce(&local_max, &largest, 1, MPI_DOUBLE, MPI_MAX, _comm);
-    for (double& x : shape->x()->mutable_array())
-      x /= largest;
+    auto shape = normalised_function(v, space, _comm);
     shape->name = "mode_" + std::to_string(modes.size() + 1);
     modes.push_back({1.0 / theta, shape});
   }
@@ -76,6 +87,44 @@ LinearBuckling::solve(Mat K, Mat K_perturbed, int num_modes,
   if (static_cast<int>(modes.size()) > num_modes)
     modes.resize(num_modes);
   return modes;
+}
+
+BucklingMode lowest_tangent_eigenpair(MPI_Comm comm, Mat K,
+                                      std::shared_ptr<const dolfinx::fem::FunctionSpace> space)
+{
+  const std::string prefix = "stability_";
+  set_default_option(prefix, "st_ksp_type", "preonly");
+  set_default_option(prefix, "st_pc_type", "lu");
+  set_default_option(prefix, "st_pc_factor_mat_solver_type", "mumps");
+  EPS eps;
+  GELX_PETSC(EPSCreate(comm, &eps));
+  GELX_PETSC(EPSSetOptionsPrefix(eps, prefix.c_str()));
+  GELX_PETSC(EPSSetOperators(eps, K, nullptr));
+  GELX_PETSC(EPSSetProblemType(eps, EPS_NHEP));
+  GELX_PETSC(EPSSetTarget(eps, 0.0));
+  GELX_PETSC(EPSSetWhichEigenpairs(eps, EPS_TARGET_MAGNITUDE));
+  ST st;
+  GELX_PETSC(EPSGetST(eps, &st));
+  GELX_PETSC(STSetType(st, STSINVERT));
+  GELX_PETSC(EPSSetTolerances(eps, 1e-10, 500));
+  GELX_PETSC(EPSSetFromOptions(eps));
+  GELX_PETSC(EPSSolve(eps));
+  PetscInt converged;
+  GELX_PETSC(EPSGetConverged(eps, &converged));
+  if (converged < 1)
+  {
+    EPSDestroy(&eps);
+    throw std::runtime_error("the lowest eigenvalue of the tangent did not converge");
+  }
+  Vec v;
+  GELX_PETSC(MatCreateVecs(K, &v, nullptr));
+  PetscScalar value;
+  GELX_PETSC(EPSGetEigenpair(eps, 0, &value, nullptr, v, nullptr));
+  BucklingMode pair{value, normalised_function(v, space, comm)};
+  pair.shape->name = "stability_mode";
+  VecDestroy(&v);
+  EPSDestroy(&eps);
+  return pair;
 }
 
 void seed_imperfection(dolfinx::mesh::Mesh& mesh, const std::vector<BucklingMode>& modes,

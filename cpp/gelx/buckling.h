@@ -13,8 +13,8 @@
 namespace gelx
 {
 
-/// One buckling mode: the load factor lambda at which it appears and its shape (largest
-/// displacement component 1).
+/// One buckling mode: the load factor lambda at which it appears (or, for a tangent's
+/// eigenpair, the eigenvalue) and its shape (largest displacement component 1).
 struct BucklingMode
 {
   double load_factor;
@@ -44,6 +44,14 @@ private:
   MPI_Comm _comm;
   std::string _prefix;
 };
+
+/// The eigenvalue of a tangent K nearest zero and its eigenvector (largest component 1): the
+/// stability of an equilibrium. A negative value means the state is unstable; a sign change
+/// along a path marks a limit or bifurcation point. Shift-and-invert about 0 with MUMPS;
+/// options prefix `stability_`. Dirichlet rows (eigenvalue 1) do not interfere as long as the
+/// physical eigenvalue sought is nearer zero than 1, which holds near instabilities.
+BucklingMode lowest_tangent_eigenpair(MPI_Comm comm, Mat K,
+                                      std::shared_ptr<const dolfinx::fem::FunctionSpace> space);
 
 /// Add the imperfection sum_i amplitude_i * mode_i to the mesh coordinates (as ABAQUS
 /// *IMPERFECTION does): each mode (largest component 1) is evaluated at the mesh nodes.

@@ -14,12 +14,7 @@ ArcLength::ArcLength(MPI_Comm comm, NonlinearProblem& problem,
                      std::function<void(double)> set_load_factor, const std::string& prefix)
     : _comm(comm), _problem(problem), _set_load(std::move(set_load_factor)), _prefix(prefix)
 {
-  set_default_option(prefix, "ksp_type", "preonly");
-  set_default_option(prefix, "pc_type", "lu");
-  set_default_option(prefix, "pc_factor_mat_solver_type", "mumps");
-  GELX_PETSC(KSPCreate(comm, &_ksp));
-  GELX_PETSC(KSPSetOptionsPrefix(_ksp, prefix.c_str()));
-  GELX_PETSC(KSPSetFromOptions(_ksp));
+  _ksp = create_linear_solver(comm, prefix);
   _K = problem.create_matrix();
   for (Vec* v : {&_R, &_f, &_a, &_b, &_du, &_du_prev, &_u0, &_tmp})
     *v = problem.create_vector();

@@ -11,13 +11,7 @@ namespace gelx
 NewtonSolver::NewtonSolver(MPI_Comm comm, const std::string& prefix)
     : _comm(comm), _prefix(prefix)
 {
-  // A direct solve is the robust default for the problem sizes of the scenes.
-  set_default_option(prefix, "ksp_type", "preonly");
-  set_default_option(prefix, "pc_type", "lu");
-  set_default_option(prefix, "pc_factor_mat_solver_type", "mumps");
-  GELX_PETSC(KSPCreate(comm, &_ksp));
-  GELX_PETSC(KSPSetOptionsPrefix(_ksp, prefix.c_str()));
-  GELX_PETSC(KSPSetFromOptions(_ksp));
+  _ksp = create_linear_solver(comm, prefix);
 }
 
 NewtonSolver::~NewtonSolver()

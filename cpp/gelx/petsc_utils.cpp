@@ -24,6 +24,18 @@ void set_default_option(const std::string& prefix, const std::string& name,
                                     value.empty() ? nullptr : value.c_str()));
 }
 
+KSP create_linear_solver(MPI_Comm comm, const std::string& prefix)
+{
+  set_default_option(prefix, "ksp_type", "preonly");
+  set_default_option(prefix, "pc_type", "lu");
+  set_default_option(prefix, "pc_factor_mat_solver_type", "mumps");
+  KSP ksp;
+  GELX_PETSC(KSPCreate(comm, &ksp));
+  GELX_PETSC(KSPSetOptionsPrefix(ksp, prefix.c_str()));
+  GELX_PETSC(KSPSetFromOptions(ksp));
+  return ksp;
+}
+
 double real_option(const std::string& prefix, const std::string& name, double fallback)
 {
   PetscReal value = fallback;

@@ -3,7 +3,7 @@
 /// PETSc error codes as exceptions, and defaults in the options database that never override
 /// what the user passed.
 
-#include <petscsys.h>
+#include <petscksp.h>
 #include <stdexcept>
 #include <string>
 
@@ -20,6 +20,11 @@ void petsc_check(PetscErrorCode ierr, const char* call);
 /// in PETSC_OPTIONS or an options file), so that scene defaults never override the user.
 void set_default_option(const std::string& prefix, const std::string& name,
                         const std::string& value = "");
+
+/// A KSP reading options with `prefix`, whose default is a direct solve (MUMPS LU): robust
+/// for the problem sizes of the scenes; `-<prefix>ksp_type gmres -<prefix>pc_type gamg` etc.
+/// select an iterative one.
+KSP create_linear_solver(MPI_Comm comm, const std::string& prefix);
 
 /// Value of a real option `-<prefix><name>`, or `fallback` when unset.
 double real_option(const std::string& prefix, const std::string& name, double fallback);

@@ -55,3 +55,127 @@ def quadrature_points(cell, degree):
 def centroid(cell):
     """Reference-cell midpoint: the interpolation point of a DG0 field (cell-wise output)."""
     return {"tetrahedron": [[0.25, 0.25, 0.25]], "hexahedron": [[0.5, 0.5, 0.5]]}[cell]
+
+
+# ---------------------------------------------------------------------------------------------
+# The law library. Each function returns a strain-energy density per unit reference volume;
+# a form file picks one, builds its residual and tangent with ufl.derivative and exports the
+# Cauchy stress (cauchy_stress, or linear_elastic_stress) and the energy density for output.
+# forms/README.md tables the laws, their parameters, units, thesis equations, elements and tests.
+# ---------------------------------------------------------------------------------------------
+
+BOLTZMANN = 1.38064852e-23  # J/K, the value of the thesis' UHYPER subroutine (appendix B)
+
+
+def isochoric_invariants(F):
+    """J = det F and the isochoric invariants I1_bar = J^(-2/3) I1, I2_bar = J^(-4/3) I2."""
+    J = ufl.det(F)
+    C = F.T * F
+    I1 = ufl.tr(C)
+    I2 = (I1**2 - ufl.tr(C * C)) / 2
+    return J, J**(-2.0 / 3.0) * I1, J**(-4.0 / 3.0) * I2
+
+
+def neo_hookean_incompressible(F, p, G, bulk_compliance):
+    """Incompressible neo-Hookean solid, thesis Eq. 1.10, in mixed displacement-pressure form.
+
+    The analogue of ABAQUS hybrid elements: the pressure p is an independent field and
+        L(F, p) = G/2 (I1_bar - 3) + p (J - 1) - bulk_compliance p^2 / 2.
+    Stationarity in p gives J - 1 = bulk_compliance p: bulk_compliance = 1/K = 0 enforces
+    J = 1 exactly, where I1_bar = I1 and the deviatoric part is Eq. 1.10; bulk_compliance = 1/K > 0
+    gives back Eq. 3.1 with p = K (J - 1), without the locking of a pure displacement form.
+    p is the mean Cauchy stress (tension positive): sigma = G J^(-5/3) dev(B) + p I; the
+    thesis' Lagrange multiplier of Eq. 1.11 is -p + G I1/3.
+    """
+    J, I1_bar, _ = isochoric_invariants(F)
+    return G / 2 * (I1_bar - 3) + p * (J - 1) - bulk_compliance * p**2 / 2
+
+
+def mixed_stored_energy(lagrangian, F, p, bulk_compliance):
+    """Stored energy of a mixed law L = W_iso + p (J - 1) - bulk_compliance p^2 / 2 at a
+    solution: W_iso plus the volumetric energy bulk_compliance p^2 / 2 (= K/2 (J - 1)^2 there,
+    since J - 1 = bulk_compliance p); the energy-density output field."""
+    return lagrangian - p * (ufl.det(F) - 1) + bulk_compliance * p**2
+
+
+def mooney_rivlin_compressible(F, C10, C01, K):
+    """Compressible Mooney-Rivlin solid (constitutive comparison of chapter 2),
+        U = C10 (I1_bar - 3) + C01 (I2_bar - 3) + K/2 (J - 1)^2,
+    initial shear modulus G = 2 (C10 + C01); C01 = 0 is Eq. 3.1 with G = 2 C10.
+    """
+    J, I1_bar, I2_bar = isochoric_invariants(F)
+    return C10 * (I1_bar - 3) + C01 * (I2_bar - 3) + K / 2 * (J - 1)**2
+
+
+def mooney_rivlin_incompressible(F, p, C10, C01, bulk_compliance):
+    """Incompressible Mooney-Rivlin solid in mixed form (see neo_hookean_incompressible):
+        L(F, p) = C10 (I1_bar - 3) + C01 (I2_bar - 3) + p (J - 1) - bulk_compliance p^2 / 2.
+    """
+    J, I1_bar, I2_bar = isochoric_invariants(F)
+    return (C10 * (I1_bar - 3) + C01 * (I2_bar - 3) + p * (J - 1)
+            - bulk_compliance * p**2 / 2)
+
+
+def small_strain(F):
+    """eps = sym(F) - I = sym(Grad u)."""
+    d = F.ufl_shape[0]
+    return ufl.sym(F) - ufl.Identity(d)
+
+
+def linear_elastic(F, G, K):
+    """Small-strain isotropic linear elasticity (chapter 2's reference model),
+        U = G dev(eps):dev(eps) + K/2 tr(eps)^2,   eps = sym(Grad u),
+    G the shear and K the bulk modulus (E = 9KG/(3K+G), nu = (3K-2G)/(2(3K+G))).
+    Its stress is linear_elastic_stress (dU/dF = sigma; no J^-1 F^T push-forward).
+    """
+    eps = small_strain(F)
+    return G * ufl.inner(ufl.dev(eps), ufl.dev(eps)) + K / 2 * ufl.tr(eps)**2
+
+
+def linear_elastic_stress(psi, F):
+    """sigma = dU/d(Grad u) of linear_elastic (symmetric by construction)."""
+    return ufl.diff(psi, F)
+
+
+def chi_linear(A, B, T):
+    """Flory-Huggins parameter chi = A + B T (thesis section 4.4, step (2)); T is a runtime
+    constant that the program changes from load step to load step."""
+    return A + B * T
+
+
+def energy_scale(T, nu, length_scale):
+    """kT/nu of Eq. 4.28 with the length-scale option of the UHYPER subroutine (appendix B):
+    kT_v = k T / nu * scale. With nu in m^3 and scale = 1 the stress unit is Pa; scale = 1e-6
+    gives MPa (lengths in mm, forces in N), as in the thesis' ABAQUS models."""
+    return BOLTZMANN * T / nu * length_scale
+
+
+def flory_rehner_gel(F, n, phi0, chi, kT_nu):
+    """Flory-Rehner gel in a swollen reference state, thesis Eq. 4.28 (per reference volume):
+
+        U = kT/nu [ n/2 phi0 (phi0^(-2/3) I1' - 3 - ln(J'/phi0))
+                    + (J' - phi0) ln(1 - phi0/J') + chi phi0 (1 - phi0/J') ]
+
+    with n = N nu / V_m the network stiffness, phi0 = lambda0^-3 the polymer volume fraction of
+    the reference (mesh) state, I1' = tr(F^T F), J' = det F measured from it, so that the
+    polymer volume fraction is phi = phi0 / J'. Defined for J' > phi0 only (the log of
+    1 - phi0/J'): export J' - phi0 as the admissibility expression. Homogeneous equilibria
+    reproduce Eq. 4.7 (free swelling) and Eq. 4.10-4.11 (uniaxial constraint).
+    """
+    J = ufl.det(F)
+    I1 = ufl.tr(F.T * F)
+    return kT_nu * (n / 2 * phi0 * (phi0**(-2.0 / 3.0) * I1 - 3 - ufl.ln(J / phi0))
+                    + (J - phi0) * ufl.ln(1 - phi0 / J) + chi * phi0 * (1 - phi0 / J))
+
+
+def prestretched(law, F, F0, *args):
+    """Energy per reference volume of a law with the multiplicative split F = Fe F0:
+
+        U(F) = det(F0) law(F F0^-1, *args).
+
+    F0 maps the reference (mesh) configuration to the stress-free one of a sub-domain (a strip
+    stretched before gluing in the bistrip of chapter 3, a prestretched gel); law is an energy
+    per stress-free volume, hence det F0. F must be the ufl.variable F so that the stress
+    ufl.diff(U, F) includes the chain rule through F0^-1; F = F0 is stress free.
+    """
+    return ufl.det(F0) * law(F * ufl.inv(F0), *args)

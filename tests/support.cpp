@@ -15,9 +15,14 @@ namespace gelx::test
 
 TaggedBox tagged_box(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n)
 {
+  return tagged_box(comm, L, n, dolfinx::mesh::CellType::tetrahedron);
+}
+
+TaggedBox tagged_box(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n,
+                     dolfinx::mesh::CellType cell)
+{
   auto mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_box(
-      comm, {{{0, 0, 0}, {L[0], L[1], L[2]}}}, n, dolfinx::mesh::CellType::tetrahedron,
-      dolfinx::mesh::GhostMode::shared_facet));
+      comm, {{{0, 0, 0}, {L[0], L[1], L[2]}}}, n, cell, dolfinx::mesh::GhostMode::shared_facet));
   const int fdim = 2;
   mesh->topology_mutable().create_entities(fdim);
   mesh->topology_mutable().create_connectivity(fdim, 3);

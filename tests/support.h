@@ -6,6 +6,7 @@
 #include <array>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/mesh/Mesh.h>
+#include <dolfinx/mesh/cell_types.h>
 #include <dolfinx/mesh/MeshTags.h>
 #include <memory>
 #include <mpi.h>
@@ -33,6 +34,10 @@ struct TaggedBox
 
 /// Tetrahedral mesh of the box with n cells along each edge and its faces tagged (BoxFace).
 TaggedBox tagged_box(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n);
+
+/// The same with a chosen cell type (tetrahedron or hexahedron).
+TaggedBox tagged_box(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n,
+                     dolfinx::mesh::CellType cell);
 
 /// Smallest and largest value of component `c` of a vector function at its dofs on the facets
 /// tagged `tag` (all ranks).

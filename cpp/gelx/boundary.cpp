@@ -1,6 +1,5 @@
 #include "boundary.h"
 
-#include <algorithm>
 #include <dolfinx/fem/DofMap.h>
 #include <dolfinx/mesh/Mesh.h>
 #include <dolfinx/mesh/Topology.h>
@@ -29,18 +28,7 @@ void DirichletConditions::prescribe(int tag, int component, Profile value)
   auto dofs = dolfinx::fem::locate_dofs_topological({*sub, *collapsed}, fdim, facets);
   auto g = std::make_shared<dolfinx::fem::Function<double>>(collapsed);
 
-  // Only the cells on these facets carry boundary values; evaluate the profile there alone
-  auto f_to_c = mesh.topology().connectivity(fdim, fdim + 1);
-  std::vector<std::int32_t> cells;
-  for (std::int32_t f : facets)
-  {
-    auto c = f_to_c->links(f);
-    cells.insert(cells.end(), c.begin(), c.end());
-  }
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-
-  _conditions.push_back({g, std::move(cells), std::move(value)});
+  _conditions.push_back({g, std::move(value)});
   _bcs.push_back(std::make_shared<const dolfinx::fem::DirichletBC<double>>(g, std::move(dofs), sub));
 }
 
@@ -66,8 +54,7 @@ void DirichletConditions::update(double t)
           for (std::size_t p = 0; p < x.shape(1); ++p)
             values(p) = condition.profile(t, {x(0, p), x(1, p), x(2, p)});
           return values;
-        },
-        condition.cells);
+        });
   }
 }
 

@@ -48,8 +48,9 @@ public:
 private:
   struct Condition
   {
+    /// Evaluated on every cell, so that each rank computes the values of all its dofs, owned
+    /// and ghost, even where it does not hold the tagged facet the dof lies on
     std::shared_ptr<dolfinx::fem::Function<double>> value;
-    std::vector<std::int32_t> cells; // cells touching the facets, where `value` is evaluated
     Profile profile;
   };
   std::shared_ptr<const dolfinx::fem::FunctionSpace> _V;

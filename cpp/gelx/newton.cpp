@@ -56,6 +56,7 @@ NewtonReport NewtonSolver::solve(NonlinearSystem& system)
 
   double r_norm = residual_norm();
   report.residual0 = r_norm;
+  report.residual_history.push_back(r_norm);
   if (monitor)
     std::printf("    %3s  %-11s %-11s %-11s %-7s %s\n", "it", "|R|", "|R|/|R0|", "|du|", "step",
                 "ksp");
@@ -133,6 +134,7 @@ NewtonReport NewtonSolver::solve(NonlinearSystem& system)
       break;
     }
     r_norm = trial_norm;
+    report.residual_history.push_back(r_norm);
     if (step * du_norm <= stol * x_norm)
     {
       report.converged = r_norm <= 1e3 * std::max(atol, rtol * report.residual0);

@@ -6,6 +6,7 @@
 #include <mpi.h>
 #include <petscksp.h>
 #include <string>
+#include <vector>
 
 namespace gelx
 {
@@ -20,6 +21,8 @@ struct NewtonReport
   double residual0 = 0;  ///< |R| at the start
   double residual = 0;   ///< |R| at the end
   std::string reason;    ///< why it stopped
+  /// |R| at the start and after each accepted iteration (for convergence-rate checks)
+  std::vector<double> residual_history;
 };
 
 /// Newton's method for R(u) = 0.

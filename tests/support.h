@@ -8,6 +8,7 @@
 #include <dolfinx/mesh/Mesh.h>
 #include <dolfinx/mesh/cell_types.h>
 #include <dolfinx/mesh/MeshTags.h>
+#include <gelx/boundary.h>
 #include <memory>
 #include <mpi.h>
 #include <string>
@@ -39,11 +40,7 @@ TaggedBox tagged_box(MPI_Comm comm, std::array<double, 3> L, std::array<std::siz
 TaggedBox tagged_box(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n,
                      dolfinx::mesh::CellType cell);
 
-/// Smallest and largest value of component `c` of a vector function at its dofs on the facets
-/// tagged `tag` (all ranks).
-std::pair<double, double> component_range(const dolfinx::fem::Function<double>& u,
-                                          const dolfinx::mesh::MeshTags<std::int32_t>& facets,
-                                          int tag, int c);
+using gelx::component_range;
 
 /// Records checks; the program's exit code is the failure count (0 = all passed).
 class Checks

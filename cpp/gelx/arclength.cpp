@@ -2,6 +2,7 @@
 #include "load_stepping.h"
 #include "petsc_utils.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <dolfinx/common/MPI.h>
@@ -16,7 +17,7 @@ ArcLength::ArcLength(MPI_Comm comm, NonlinearProblem& problem,
 {
   _ksp = create_linear_solver(comm, prefix);
   _K = problem.create_matrix();
-  for (Vec* v : {&_R, &_f, &_a, &_b, &_du, &_du_prev, &_u0, &_tmp})
+  for (Vec* v : {&_R, &_f, &_a, &_b, &_du, &_du_prev, &_u0, &_tmp, &_branch})
     *v = problem.create_vector();
 }
 
@@ -24,7 +25,7 @@ ArcLength::~ArcLength()
 {
   KSPDestroy(&_ksp);
   MatDestroy(&_K);
-  for (Vec* v : {&_R, &_f, &_a, &_b, &_du, &_du_prev, &_u0, &_tmp})
+  for (Vec* v : {&_R, &_f, &_a, &_b, &_du, &_du_prev, &_u0, &_tmp, &_branch})
     VecDestroy(v);
 }
 
@@ -38,6 +39,23 @@ void ArcLength::load_derivative(double lambda, Vec f)
   _set_load(lambda);
   GELX_PETSC(VecAXPY(f, -1.0, _tmp));
   GELX_PETSC(VecScale(f, 1.0 / (2 * h)));
+}
+
+double ArcLength::switch_branch()
+{
+  _problem.tangent(_K);
+  const BucklingMode mode = lowest_tangent_eigenpair(_comm, _K, _problem.u()->function_space());
+  // The mode's owned entries, in the layout of the unknowns' vector
+  PetscInt n;
+  PetscScalar* direction;
+  GELX_PETSC(VecGetLocalSize(_branch, &n));
+  GELX_PETSC(VecGetArray(_branch, &direction));
+  std::copy_n(mode.shape->x()->array().begin(), n, direction);
+  GELX_PETSC(VecRestoreArray(_branch, &direction));
+  PetscReal norm;
+  GELX_PETSC(VecNormalize(_branch, &norm));
+  _switch_branch = true;
+  return mode.load_factor;
 }
 
 std::pair<double, double> parabola_vertex(const double s[3], const double l[3])
@@ -90,22 +108,31 @@ void ArcLength::run(double lambda0, int max_steps,
     int cutbacks = 0;
     while (true)
     {
-      // Predictor along the tangent: K du_t = -dR/dlambda
+      // Predictor along the tangent, K du_t = -dR/dlambda, or along the branch's mode
       _set_load(lambda);
       _problem.tangent(_K);
       GELX_PETSC(KSPSetOperators(_ksp, _K, _K));
       load_derivative(lambda, _f);
       const double f_norm = std::sqrt(dot(_f, _f));
-      GELX_PETSC(VecScale(_f, -1.0));
-      bool ok = solve(_f, _b);
-      GELX_PETSC(VecScale(_f, -1.0));
-      double dl = ds / std::sqrt(dot(_b, _b) + psi * psi);
-      if (have_direction && dot(_b, _du_prev) + psi * psi * dlambda_prev < 0)
-        dl = -dl; // keep going the way the path went: through a limit point, lambda decreases
-      GELX_PETSC(VecCopy(_b, _du));
-      GELX_PETSC(VecScale(_du, dl));
-      double Dl = dl;
-
+      bool ok = true;
+      double Dl = 0;
+      if (_switch_branch)
+      {
+        GELX_PETSC(VecCopy(_branch, _du));
+        GELX_PETSC(VecScale(_du, ds));
+      }
+      else
+      {
+        GELX_PETSC(VecScale(_f, -1.0));
+        ok = solve(_f, _b);
+        GELX_PETSC(VecScale(_f, -1.0));
+        double dl = ds / std::sqrt(dot(_b, _b) + psi * psi);
+        if (have_direction && dot(_b, _du_prev) + psi * psi * dlambda_prev < 0)
+          dl = -dl; // keep going the way the path went: through a limit point, lambda decreases
+        GELX_PETSC(VecCopy(_b, _du));
+        GELX_PETSC(VecScale(_du, dl));
+        Dl = dl;
+      }
 
       int it = 0;
       bool converged = false;
@@ -167,6 +194,7 @@ void ArcLength::run(double lambda0, int max_steps,
         GELX_PETSC(VecCopy(_du, _du_prev));
         dlambda_prev = Dl;
         have_direction = true;
+        _switch_branch = false;
         const double previous_stability = point.stability;
         point = {step, lambda, s, it, cutbacks, previous * Dl < 0};
         if (track_stability)

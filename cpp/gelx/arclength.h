@@ -56,6 +56,15 @@ public:
   void run(double lambda0, int max_steps, const std::function<void(const PathPoint&)>& on_point,
            const std::function<bool(const PathPoint&)>& stop);
 
+  /// Branch switching at a bifurcation (call after run() stopped just past one): the first
+  /// predictor of the next run() leaves the current state along the tangent's eigenvector
+  /// nearest zero, the mode of the crossing branch, with the load factor held, instead of
+  /// along the path. The corrector's constraint keeps the iterate a distance ds away from the
+  /// current state, so it cannot fall back onto the primary path, which moves little in u near
+  /// the bifurcation, and converges on the secondary branch (psi = 0, a cylindrical
+  /// constraint, suits this). Returns the eigenvalue (the state's stability).
+  double switch_branch();
+
 private:
   void load_derivative(double lambda, Vec f);
   MPI_Comm _comm;
@@ -65,7 +74,8 @@ private:
   KSP _ksp = nullptr;
   Mat _K = nullptr;
   Vec _R = nullptr, _f = nullptr, _a = nullptr, _b = nullptr, _du = nullptr, _du_prev = nullptr,
-      _u0 = nullptr, _tmp = nullptr;
+      _u0 = nullptr, _tmp = nullptr, _branch = nullptr;
+  bool _switch_branch = false;
 };
 
 /// The vertex of the parabola through three points (s_i, lambda_i): where a limit point

@@ -1,5 +1,7 @@
 #include "boundary.h"
 
+#include <cmath>
+#include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/DofMap.h>
 #include <dolfinx/mesh/Mesh.h>
 #include <dolfinx/mesh/Topology.h>
@@ -56,6 +58,24 @@ void DirichletConditions::update(double t)
           return values;
         });
   }
+}
+
+std::pair<double, double> component_range(const dolfinx::fem::Function<double>& u,
+                                          const dolfinx::mesh::MeshTags<std::int32_t>& facets,
+                                          int tag, int c)
+{
+  const auto& V = *u.function_space();
+  const int bs = V.dofmap()->index_map_bs();
+  const auto nodes = dolfinx::fem::locate_dofs_topological(V, 2, facets.find(tag));
+  double lo = INFINITY, hi = -INFINITY;
+  for (std::int32_t node : nodes)
+  {
+    lo = std::min(lo, u.x()->array()[bs * node + c]);
+    hi = std::max(hi, u.x()->array()[bs * node + c]);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_DOUBLE, MPI_MIN, V.mesh()->comm());
+  MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_DOUBLE, MPI_MAX, V.mesh()->comm());
+  return {lo, hi};
 }
 
 } // namespace gelx

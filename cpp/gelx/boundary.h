@@ -59,4 +59,10 @@ private:
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
 };
 
+/// Smallest and largest value of component `c` of a vector function at its dofs on the facets
+/// tagged `tag` (all ranks): a probe for the displacement of a face.
+std::pair<double, double> component_range(const dolfinx::fem::Function<double>& u,
+                                          const dolfinx::mesh::MeshTags<std::int32_t>& facets,
+                                          int tag, int c);
+
 } // namespace gelx

@@ -7,10 +7,13 @@
 #include <dolfinx/io/cells.h>
 #include <dolfinx/io/xdmf_utils.h>
 #include <dolfinx/mesh/Topology.h>
+#include <dolfinx/mesh/generation.h>
+#include <dolfinx/mesh/utils.h>
 #include <dolfinx/mesh/cell_types.h>
 #include <filesystem>
 #include <gmsh.h>
 #include <numeric>
+#include <xtensor/xview.hpp>
 
 namespace gelx
 {
@@ -204,6 +207,44 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
           dolfinx::graph::AdjacencyList<std::int32_t>(facet_vertices, facet_offsets),
           std::span<const std::int32_t>(facet_values)));
   return result;
+}
+
+TaggedMesh box_mesh(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n,
+                    dolfinx::mesh::CellType cell)
+{
+  auto mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_box(
+      comm, {{{0, 0, 0}, {L[0], L[1], L[2]}}}, n, cell, dolfinx::mesh::GhostMode::shared_facet));
+  const int fdim = 2;
+  mesh->topology_mutable().create_entities(fdim);
+  mesh->topology_mutable().create_connectivity(fdim, 3);
+  TaggedMesh box{mesh, nullptr, nullptr, {}};
+  std::vector<std::pair<std::int32_t, std::int32_t>> tagged;
+  const char* axes = "xyz";
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (int side = 0; side < 2; ++side)
+    {
+      const int tag = 2 * axis + side + 1;
+      box.names[std::string(1, axes[axis]) + (side ? "_max" : "_min")] = tag;
+      const double plane = side * L[axis], tol = 1e-10 * L[axis];
+      auto facets = dolfinx::mesh::locate_entities_boundary(
+          *mesh, fdim,
+          [&](const xt::xtensor<double, 2>& x) -> xt::xtensor<bool, 1>
+          { return xt::abs(xt::row(x, axis) - plane) < tol; });
+      for (auto f : facets)
+        tagged.push_back({f, tag});
+    }
+  }
+  std::sort(tagged.begin(), tagged.end()); // a boundary facet lies on exactly one face
+  std::vector<std::int32_t> indices, values;
+  for (auto [f, tag] : tagged)
+  {
+    indices.push_back(f);
+    values.push_back(tag);
+  }
+  box.facet_tags = std::make_shared<dolfinx::mesh::MeshTags<std::int32_t>>(
+      mesh, fdim, std::move(indices), std::move(values));
+  return box;
 }
 
 } // namespace gelx

@@ -2,7 +2,9 @@
 /// @file mesh.h
 /// Meshes from gmsh `.geo` files with their physical groups as dolfinx tags.
 
+#include <array>
 #include <dolfinx/mesh/Mesh.h>
+#include <dolfinx/mesh/cell_types.h>
 #include <dolfinx/mesh/MeshTags.h>
 #include <map>
 #include <memory>
@@ -34,5 +36,11 @@ struct TaggedMesh
 /// collective call).
 TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
                     const std::map<std::string, double>& numbers = {});
+
+/// Box [0, L0] x [0, L1] x [0, L2] with n cells along each edge (tetrahedra: six a box cell)
+/// and its faces tagged x_min = 1, x_max = 2, y_min = 3, y_max = 4, z_min = 5, z_max = 6
+/// (`names` holds them): for prismatic scenes (columns, blocks) and verification tests.
+TaggedMesh box_mesh(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n,
+                    dolfinx::mesh::CellType cell = dolfinx::mesh::CellType::tetrahedron);
 
 } // namespace gelx

@@ -130,25 +130,56 @@ void ResultsWriter::write_fields(
   file.close();
 }
 
+namespace
+{
+void write_csv_header(std::ostream& out, const std::vector<std::string>& columns)
+{
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    out << (i ? "," : "") << columns[i];
+  out << "\n";
+}
+
+void write_csv_row(std::ostream& out, const std::vector<std::string>& columns,
+                   const nlohmann::json& row)
+{
+  out.precision(15);
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    out << (i ? "," : "") << row.at(columns[i]);
+  out << "\n";
+}
+
+std::vector<std::string> keys(const nlohmann::json& row)
+{
+  std::vector<std::string> k;
+  for (auto it = row.begin(); it != row.end(); ++it)
+    k.push_back(it.key());
+  return k;
+}
+} // namespace
+
 void ResultsWriter::append_step(const nlohmann::json& row)
 {
   if (!_root)
     return;
   const bool first = _columns.empty();
   if (first)
-    for (auto it = row.begin(); it != row.end(); ++it)
-      _columns.push_back(it.key());
+    _columns = keys(row);
   std::ofstream out(_folder / "steps.csv", std::ios::app);
   if (first)
-  {
-    for (std::size_t i = 0; i < _columns.size(); ++i)
-      out << (i ? "," : "") << _columns[i];
-    out << "\n";
-  }
-  out.precision(15);
-  for (std::size_t i = 0; i < _columns.size(); ++i)
-    out << (i ? "," : "") << row.at(_columns[i]);
-  out << "\n";
+    write_csv_header(out, _columns);
+  write_csv_row(out, _columns, row);
+}
+
+void ResultsWriter::write_table(const std::string& file_name,
+                                const std::vector<nlohmann::json>& rows)
+{
+  if (!_root || rows.empty())
+    return;
+  std::ofstream out(_folder / file_name);
+  const auto columns = keys(rows.front());
+  write_csv_header(out, columns);
+  for (const auto& row : rows)
+    write_csv_row(out, columns, row);
 }
 
 void ResultsWriter::write_summary(const nlohmann::json& summary)

@@ -68,6 +68,9 @@ public:
   /// Append one row to steps.csv (columns from the first row's keys), then flush.
   void append_step(const nlohmann::json& row);
 
+  /// Write a whole table (columns from the first row's keys) to folder/file_name.
+  void write_table(const std::string& file_name, const std::vector<nlohmann::json>& rows);
+
   /// Write summary.json (atomically: a reader never sees half a file).
   void write_summary(const nlohmann::json& summary);
 

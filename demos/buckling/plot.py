@@ -1,0 +1,56 @@
+"""Load-deflection paths of a buckling run against the elastica: buckling.png.
+
+usage: plot.py OUTPUT_DIR
+"""
+import csv
+import json
+import pathlib
+import sys
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+out = pathlib.Path(sys.argv[1])
+s = json.loads((out / "summary.json").read_text())
+rows = list(csv.DictReader(open(out / "steps.csv")))
+P_cr = s["critical_load_over_euler"]
+
+
+def complete_elliptic_k(k):
+    """K(k) = pi / (2 AGM(1, sqrt(1 - k^2)))."""
+    a, b = np.ones_like(k), np.sqrt(1 - k**2)
+    for _ in range(30):
+        a, b = (a + b) / 2, np.sqrt(a * b)
+    return np.pi / (2 * a)
+
+
+# The cantilever elastica, parametrised by k = sin(tip angle / 2); with clamped ends each
+# quarter of the column is such a cantilever and the mid-span deflection is twice its tip's
+k = np.linspace(1e-6, 0.8, 400)
+d_cantilever = 2 * k / complete_elliptic_k(k)
+d = d_cantilever / 2 if s["parameters"]["ends"] == "clamped-clamped" else d_cantilever
+load = (2 * complete_elliptic_k(k) / np.pi)**2
+
+shown = d <= 1.1 * max(float(r["deflection_over_L"]) for r in rows)
+
+fig, ax = plt.subplots(figsize=(6, 4))
+ax.plot(d[shown], load[shown], "k-", label="elastica")
+styles = {"straight": ("s", "perfect column, straight path"),
+          "branch": ("o", "after branch switching"),
+          "imperfect": ("^", f"imperfect, amplitude {s['imperfection_amplitude']:g}")}
+for path, (marker, label) in styles.items():
+    pts = [r for r in rows if r["path"] == path]
+    ax.plot([float(r["deflection_over_L"]) for r in pts],
+            [float(r["axial_force_over_euler"]) / P_cr for r in pts], marker, ms=4, label=label)
+ax.set_xlabel("lateral deflection d / L")
+ax.set_ylabel("axial load P / P_cr")
+ax.set_ylim(0, 1.1 * max(load[d <= 0.35].max(), 1.05))
+ax.set_title(f"{s['parameters']['ends']} column, slenderness {s['slenderness']:.0f}: "
+             f"P_cr / P_Euler = {P_cr:.4f}")
+ax.legend(loc="lower right")
+ax.grid(alpha=0.3)
+fig.tight_layout()
+fig.savefig(out / "buckling.png", dpi=120)
+print(f"wrote {out / 'buckling.png'}")

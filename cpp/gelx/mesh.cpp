@@ -11,6 +11,7 @@
 #include <dolfinx/mesh/utils.h>
 #include <dolfinx/mesh/cell_types.h>
 #include <filesystem>
+#include <functional>
 #include <gmsh.h>
 #include <numeric>
 #include <xtensor/xview.hpp>
@@ -79,11 +80,11 @@ void read_physical_elements(int dim, const std::map<std::size_t, std::int64_t>& 
   }
 }
 
-GmshData mesh_with_gmsh(const std::string& geo_file, const std::map<std::string, double>& numbers)
+/// Start gmsh (with `args` as its command line), let `build` create the model, mesh it in 3-D
+/// and read it.
+GmshData mesh_with_gmsh(std::vector<std::string> args, const std::function<void()>& build)
 {
-  std::vector<std::string> args = {"gelx"};
-  for (auto& [name, value] : numbers)
-    args.insert(args.end(), {"-setnumber", name, std::to_string(value)});
+  args.insert(args.begin(), "gelx");
   std::vector<char*> argv;
   for (auto& a : args)
     argv.push_back(a.data());
@@ -92,7 +93,7 @@ GmshData mesh_with_gmsh(const std::string& geo_file, const std::map<std::string,
   GmshData data;
   try
   {
-    gmsh::open(geo_file);
+    build();
     gmsh::model::mesh::generate(3);
 
     std::vector<std::size_t> node_tags;
@@ -109,7 +110,7 @@ GmshData mesh_with_gmsh(const std::string& geo_file, const std::map<std::string,
     read_physical_elements(2, node_index, facet_type, data.facets, data.facet_values,
                            data.names);
     if (data.cells.empty())
-      throw std::runtime_error(geo_file + " defines no physical volume");
+      throw std::runtime_error("the gmsh model defines no physical volume");
   }
   catch (...)
   {
@@ -141,11 +142,19 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
 {
   if (!std::filesystem::is_regular_file(geo_file))
     throw InputError("mesh file '" + geo_file + "' not found");
+  std::vector<std::string> args;
+  for (auto& [name, value] : numbers)
+    args.insert(args.end(), {"-setnumber", name, std::to_string(value)});
+  return mesh_gmsh_model(comm, [&]() { gmsh::open(geo_file); }, args);
+}
 
+TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
+                           const std::vector<std::string>& gmsh_args)
+{
   const int rank = dolfinx::MPI::rank(comm);
   GmshData data;
   if (rank == 0)
-    data = mesh_with_gmsh(geo_file, numbers);
+    data = mesh_with_gmsh(gmsh_args, build);
 
   // Rank 0 tells the others the cell type and the group names
   int type_code = data.cell_type_code;

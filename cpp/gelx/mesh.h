@@ -6,10 +6,12 @@
 #include <dolfinx/mesh/Mesh.h>
 #include <dolfinx/mesh/cell_types.h>
 #include <dolfinx/mesh/MeshTags.h>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mpi.h>
 #include <string>
+#include <vector>
 
 namespace gelx
 {
@@ -36,6 +38,14 @@ struct TaggedMesh
 /// collective call).
 TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
                     const std::map<std::string, double>& numbers = {});
+
+/// Mesh a model that `build` creates with the gmsh API (gmsh is initialised, with `gmsh_args`
+/// as its command line, on rank 0 only) and distribute it over `comm`, as read_geo does. For
+/// geometries a .geo file cannot express in reasonable length; `build` must add the physical
+/// groups and may set transfinite meshing, and it is called on rank 0 only, so it must not
+/// communicate. Collective.
+TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
+                           const std::vector<std::string>& gmsh_args = {});
 
 /// Box [0, L0] x [0, L1] x [0, L2] with n cells along each edge (tetrahedra: six a box cell)
 /// and its faces tagged x_min = 1, x_max = 2, y_min = 3, y_max = 4, z_min = 5, z_max = 6

@@ -1,0 +1,151 @@
+#include "contact.h"
+#include "petsc_utils.h"
+
+#include <cmath>
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/DofMap.h>
+
+namespace gelx
+{
+
+RigidPlaneContact::RigidPlaneContact(NonlinearProblem& problem,
+                                     std::shared_ptr<const dolfinx::fem::FunctionSpace> displacement,
+                                     const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags,
+                                     int tag, int axis, int side)
+    : _problem(problem), _axis(axis), _side(side)
+{
+  const auto& W = *problem.u()->function_space();
+  const std::int32_t num_owned = W.dofmap()->index_map->size_local() * W.dofmap()->index_map_bs();
+  // The displacement as a plain vector space V0, and where its dofs sit in the problem's vector
+  std::shared_ptr<const dolfinx::fem::FunctionSpace> V0 = displacement;
+  std::vector<std::int32_t> to_problem;
+  if (!displacement->component().empty())
+  {
+    auto [collapsed, map] = displacement->collapse();
+    V0 = std::make_shared<dolfinx::fem::FunctionSpace>(std::move(collapsed));
+    to_problem = std::move(map);
+  }
+  auto problem_dof = [&](std::int32_t node, int c)
+  {
+    const std::int32_t i = 3 * node + c;
+    return to_problem.empty() ? i : to_problem[i];
+  };
+  _level_set = std::make_shared<dolfinx::fem::Function<double>>(V0);
+  const std::vector<double> X = V0->tabulate_dof_coordinates(false);
+  const int fdim = V0->mesh()->topology().dim() - 1;
+  for (std::int32_t node :
+       dolfinx::fem::locate_dofs_topological(*V0, fdim, facet_tags.find(tag), false))
+  {
+    const std::int32_t dof = problem_dof(node, axis);
+    if (dof >= num_owned)
+      continue;
+    _node.push_back(node);
+    _dof.push_back(dof);
+    _node_dofs.push_back({problem_dof(node, 0), problem_dof(node, 1), problem_dof(node, 2)});
+    _X.push_back({X[3 * node], X[3 * node + 1], X[3 * node + 2]});
+  }
+  _lambda.assign(_dof.size(), 0.0);
+  _active.assign(_dof.size(), 0);
+
+  // c_i: the diagonal of the tangent at the current (reference) state
+  Mat A = problem.create_matrix();
+  Vec diagonal = problem.create_vector();
+  problem.tangent(A);
+  GELX_PETSC(MatGetDiagonal(A, diagonal));
+  GELX_PETSC(VecGetOwnershipRange(diagonal, &_first_row, nullptr));
+  const PetscScalar* d;
+  GELX_PETSC(VecGetArrayRead(diagonal, &d));
+  for (std::int32_t dof : _dof)
+    _scale.push_back(std::abs(d[dof]));
+  GELX_PETSC(VecRestoreArrayRead(diagonal, &d));
+  VecDestroy(&diagonal);
+  MatDestroy(&A);
+}
+
+void RigidPlaneContact::update_active_set(Vec unconstrained_residual)
+{
+  const PetscScalar* R;
+  GELX_PETSC(VecGetArrayRead(unconstrained_residual, &R));
+  const auto& u = _problem.u()->x()->array();
+  for (std::size_t i = 0; i < _dof.size(); ++i)
+  {
+    _lambda[i] = _side * R[_dof[i]];
+    const double gap = _side * (_X[i][_axis] + u[_dof[i]] - _position);
+    _active[i] = _scale[i] * gap < _lambda[i];
+  }
+  GELX_PETSC(VecRestoreArrayRead(unconstrained_residual, &R));
+}
+
+void RigidPlaneContact::residual(Vec r)
+{
+  _problem.residual(r);
+  update_active_set(r);
+  const auto& u = _problem.u()->x()->array();
+  PetscScalar* values;
+  GELX_PETSC(VecGetArray(r, &values));
+  for (std::size_t i = 0; i < _dof.size(); ++i)
+    if (_active[i])
+      values[_dof[i]] = u[_dof[i]] - (_position - _X[i][_axis]);
+  GELX_PETSC(VecRestoreArray(r, &values));
+}
+
+void RigidPlaneContact::tangent(Mat A)
+{
+  _problem.tangent(A);
+  std::vector<PetscInt> rows;
+  for (std::size_t i = 0; i < _dof.size(); ++i)
+    if (_active[i])
+      rows.push_back(_first_row + _dof[i]);
+  // Later assemblies write into these rows again: keep their sparsity
+  GELX_PETSC(MatSetOption(A, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+  GELX_PETSC(MatZeroRows(A, rows.size(), rows.data(), 1.0, nullptr, nullptr));
+}
+
+ContactState RigidPlaneContact::state()
+{
+  Vec r = _problem.create_vector();
+  _problem.residual(r);
+  update_active_set(r);
+  VecDestroy(&r);
+  const auto& u = _problem.u()->x()->array();
+  double sums[2] = {0, 0}, penetration = 0;
+  for (std::size_t i = 0; i < _dof.size(); ++i)
+  {
+    sums[0] += _lambda[i];
+    sums[1] += _active[i];
+    penetration
+        = std::max(penetration, -_side * (_X[i][_axis] + u[_dof[i]] - _position));
+  }
+  MPI_Comm comm = _problem.u()->function_space()->mesh()->comm();
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &penetration, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return {sums[0], static_cast<std::int64_t>(sums[1]), penetration};
+}
+
+std::shared_ptr<const dolfinx::fem::Function<double>> RigidPlaneContact::contact_level_set()
+{
+  state(); // lambda at the current unknowns
+  const auto& u = _problem.u()->x()->array();
+  auto values = _level_set->x()->mutable_array();
+  std::fill(values.begin(), values.end(), 0.0);
+  for (std::size_t i = 0; i < _dof.size(); ++i)
+  {
+    const double gap = _side * (_X[i][_axis] + u[_dof[i]] - _position);
+    std::fill_n(values.begin() + 3 * _node[i], 3, _lambda[i] / _scale[i] - gap);
+  }
+  _level_set->x()->scatter_fwd();
+  return _level_set;
+}
+
+std::vector<std::array<double, 4>> RigidPlaneContact::active_nodes() const
+{
+  const auto& u = _problem.u()->x()->array();
+  std::vector<std::array<double, 4>> nodes;
+  for (std::size_t i = 0; i < _dof.size(); ++i)
+    if (_active[i])
+      nodes.push_back({_X[i][0] + u[_node_dofs[i][0]], _X[i][1] + u[_node_dofs[i][1]],
+                       _X[i][2] + u[_node_dofs[i][2]], _lambda[i]});
+  return nodes;
+}
+
+} // namespace gelx

@@ -1,0 +1,106 @@
+#pragma once
+/// @file contact.h
+/// Frictionless, non-adhesive contact of a hyperelastic body with a rigid plane.
+
+#include "problem.h"
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/fem/FunctionSpace.h>
+#include <dolfinx/mesh/MeshTags.h>
+#include <memory>
+#include <vector>
+
+namespace gelx
+{
+
+/// What the contact looks like at the current state.
+struct ContactState
+{
+  double force = 0;            ///< total contact force on the body, along the plane normal
+  std::int64_t active = 0;     ///< nodes in contact (all ranks)
+  double max_penetration = 0;  ///< largest distance of a candidate node behind the plane
+};
+
+/// The equilibrium problem with the unilateral constraint of a rigid plane
+/// x_k = position (axis k; the body on the side `side` = +1 or -1 of it), solved by a
+/// semismooth (primal-dual active-set) Newton method on the nodes of a candidate surface.
+///
+/// Why an exact active set: the hard case of the pyramid scene is contact that starts at one
+/// sharp apex node and grows into a patch with concave edges. A penalty lets the apex sink into
+/// the plane by an amount that depends on the penalty and the mesh, and a sharp on/off penalty
+/// made Newton cycle between two active sets (shared/NOTES.md); Nitsche's method needs a
+/// stabilisation parameter tuned to the crushed tip elements. For a plane normal to an axis the
+/// constraint is a bound on one displacement component per node, so it can be imposed exactly:
+/// penetration is zero at every node, to round-off.
+///
+/// Every candidate node i carries the complementarity conditions gap_i >= 0, lambda_i >= 0,
+/// gap_i lambda_i = 0, with gap_i = side (X_i + u_i - position) and the contact force
+/// lambda_i = side R_i, R the residual of the unconstrained problem. They are the root of
+/// min(c_i gap_i, lambda_i) (c_i the tangent's diagonal, which gives both terms units of force),
+/// whose Newton step replaces the rows of the active nodes, where c_i gap_i < lambda_i, by
+/// u_i - u_i* with u_i* the displacement that closes the gap (a Dirichlet row, like those of
+/// NonlinearProblem); the others keep R_i. The
+/// active set is re-evaluated at every iterate from these quantities, so the solver (NewtonSolver,
+/// with its line search and admissibility checks, inside LoadStepper) needs nothing else.
+/// Nodes of the candidate surface on the far side of the plane are added to the active set at
+/// the next iterate, so a converged state has no penetration at any node.
+class RigidPlaneContact : public NonlinearSystem
+{
+public:
+  /// @param problem the unconstrained problem
+  /// @param displacement the displacement space: the problem's space, or its sub-space W->sub({0})
+  ///        for a mixed displacement-pressure formulation
+  /// @param facet_tags, tag the candidate surface
+  /// @param axis, side the plane's normal axis and the side of the plane the body is on
+  RigidPlaneContact(NonlinearProblem& problem,
+                    std::shared_ptr<const dolfinx::fem::FunctionSpace> displacement,
+                    const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags, int tag, int axis,
+                    int side);
+
+  /// Move the plane to x_axis = position.
+  void set_position(double position) { _position = position; }
+  double position() const { return _position; }
+
+  Vec unknowns() override { return _problem.unknowns(); }
+  void unknowns_changed() override { _problem.unknowns_changed(); }
+  void residual(Vec r) override;
+  void tangent(Mat A) override;
+  Vec create_vector() const override { return _problem.create_vector(); }
+  Mat create_matrix() const override { return _problem.create_matrix(); }
+  bool admissible() const override { return _problem.admissible(); }
+
+  /// Force, active set size and penetration at the current state. Collective.
+  ContactState state();
+
+  /// The contact level set on the (collapsed) displacement space, every component equal:
+  /// phi_i = lambda_i / c_i - gap_i at the candidate nodes, positive in contact (where the
+  /// node's force, as a displacement, exceeds its gap) and negative outside, zero elsewhere.
+  /// Its interpolant's zero line locates the patch edge between an active and an inactive node,
+  /// so a surface integral of H(phi) with the current projected area element (forms/contact.py)
+  /// gives the contact area without the O(h) steps of counting whole facets. Collective.
+  std::shared_ptr<const dolfinx::fem::Function<double>> contact_level_set();
+
+  /// Current coordinates of the active nodes owned by this rank (x, y, z per node), and the
+  /// contact force each carries, for contact widths and pressure maps.
+  std::vector<std::array<double, 4>> active_nodes() const;
+
+private:
+  /// Recompute, at the current unknowns, lambda and the active set (into _lambda, _active).
+  void update_active_set(Vec unconstrained_residual);
+
+  NonlinearProblem& _problem;
+  int _axis, _side;
+  double _position = 0;
+  /// Candidate nodes owned by this rank: the normal-component dof in the problem's vector,
+  /// the dofs of all three components, and the reference coordinates
+  std::vector<std::int32_t> _dof;
+  std::vector<std::array<std::int32_t, 3>> _node_dofs;
+  std::vector<std::array<double, 3>> _X;
+  std::vector<std::int32_t> _node;   ///< the candidate's node in the displacement space
+  std::vector<double> _scale;        ///< c_i
+  std::vector<double> _lambda;       ///< contact force per candidate
+  std::vector<char> _active;
+  PetscInt _first_row = 0; ///< global index of the first owned row
+  std::shared_ptr<dolfinx::fem::Function<double>> _level_set;
+};
+
+} // namespace gelx

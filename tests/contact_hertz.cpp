@@ -1,0 +1,172 @@
+// Verification: frictionless contact with a rigid plane (gelx::RigidPlaneContact) against Hertz.
+//
+// A spherical cap of radius R = 1 on a block of width 4R clamped at its top (meshes/hertz.geo),
+// incompressible neo-Hookean (G = 1, mixed P2-P1), is pressed onto the plane z = d, which moves
+// up from the apex to d = 0.02 R. The block makes the body look like Hertz's half-space from
+// the contact: a hemisphere clamped (or sliding) at its equator is stiffer by the half-space's
+// displacement at distance R, measured +10% (+4.5%) on the force at this d/R, whereas the finite
+// body's error here is O(a/L) with L = 4R. At small indentation the patch is a disc of radius
+// a = sqrt(R d) and the force F = (4/3) E* R^(1/2) d^(3/2) with E* = E/(1 - nu^2) = 4G for an
+// incompressible solid: F = (16/3) G R^(1/2) d^(3/2).
+//
+// Checked: force and contact radius within 3% of Hertz on the finest mesh, with the force error
+// shrinking under refinement of the contact zone; no node behind the plane; the quarter model
+// (two symmetry planes) against the half model (one) on meshes of the same size.
+//
+// usage: test_contact_hertz [SUMMARY.json] [PETSc options]: writes the finest quarter's force
+// and radius to SUMMARY.json (for the comparison of rank counts).
+
+#include "common.h"
+#include "contact.h"
+#include "mixed_tet.h"
+
+#include <fstream>
+#include <map>
+#include <gelx/boundary.h>
+#include <gelx/contact.h>
+#include <gelx/load_stepping.h>
+#include <gelx/mesh.h>
+#include <gelx/mixed.h>
+#include <gelx/petsc_utils.h>
+#include <nlohmann/json.hpp>
+#include <slepcsys.h>
+
+using namespace dolfinx;
+
+namespace
+{
+constexpr double R = 1.0, G = 1.0, d_max = 0.02 * R;
+
+struct Pressed
+{
+  double force = 0, radius = 0, penetration = 0;
+  std::int64_t active_nodes = 0;
+  int steps = 0, iterations = 0, cutbacks = 0;
+  std::int64_t dofs = 0;
+};
+
+Pressed press(MPI_Comm comm, double h_contact, int quarters)
+{
+  auto geo = gelx::read_geo(comm, GELX_MESHES "/hertz.geo",
+                            {{"R", R}, {"h_contact", h_contact}, {"quarters", quarters}});
+  auto W = std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(functionspace_form_mixed_tet_residual_nh, "w", geo.mesh));
+  auto w = std::make_shared<fem::Function<double>>(W);
+  const gelx::test::Constants constants
+      = {{"G", std::make_shared<fem::Constant<double>>(G)},
+         {"bulk_compliance", std::make_shared<fem::Constant<double>>(0.0)}};
+  auto forms = gelx::test::make_forms(form_mixed_tet_residual_nh, form_mixed_tet_tangent_nh, W,
+                                      {{"w", w}}, constants);
+  auto displacement = W->sub({0});
+  gelx::DirichletConditions bcs(displacement, geo.facet_tags);
+  bcs.clamp(geo.tag("top"));
+  if (quarters <= 2)
+    bcs.fix(geo.tag("sym_y"), 1);
+  if (quarters == 1)
+    bcs.fix(geo.tag("sym_x"), 0);
+  bcs.update(0);
+  gelx::NonlinearProblem problem(
+      w, forms.residual, forms.tangent, bcs.bcs(),
+      gelx::test::make_expression(expression_mixed_tet_det_F, {{"w", w}}, {}, geo.mesh));
+  gelx::RigidPlaneContact contact(problem, displacement, *geo.facet_tags, geo.tag("contact"), 2,
+                                  +1);
+
+  gelx::NewtonSolver newton(comm);
+  gelx::LoadSteppingOptions steps;
+  steps.dt = 0.25;
+  steps.dt_max = 0.5;
+  Pressed p;
+  gelx::LoadStepper(contact, newton, steps, [&](double t) { contact.set_position(t * d_max); })
+      .run(
+          [&](const gelx::StepRecord& s)
+          {
+            ++p.steps;
+            p.iterations += s.newton.iterations;
+            p.cutbacks += s.cutbacks;
+          });
+
+  const gelx::ContactState state = contact.state();
+  const double copies = 4.0 / quarters; // of the modelled part in the whole hemisphere
+  p.force = copies * state.force;
+  p.penetration = state.max_penetration;
+  p.active_nodes = state.active;
+  p.dofs = W->dofmap()->index_map->size_global();
+
+  // The patch area: where the contact level set is positive, on the current surface
+  auto u = gelx::collapse_sub_function(*w, 0);
+  const std::vector<std::int32_t> contact_facets = geo.facet_tags->find(geo.tag("contact"));
+  auto patch = std::make_shared<mesh::MeshTags<std::int32_t>>(
+      geo.mesh, 2, std::vector<std::int32_t>(contact_facets),
+      std::vector<std::int32_t>(contact_facets.size(), 1));
+  auto normal = std::make_shared<fem::Constant<double>>(std::vector<double>{0, 0, 1});
+  auto area_form = fem::create_form<double>(
+      *form_contact_contact_area, {}, {{"u", u}, {"level_set", contact.contact_level_set()}},
+      {{"normal", normal}}, {{fem::IntegralType::exterior_facet, patch.get()}}, geo.mesh);
+  p.radius = std::sqrt(copies * gelx::assemble_global_scalar(area_form) / M_PI);
+  return p;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  SlepcInitialize(&argc, &argv, nullptr, nullptr);
+  int status;
+  {
+    MPI_Comm comm = PETSC_COMM_WORLD;
+    gelx::test::Checks checks(comm);
+    gelx::set_default_option("newton_", "monitor", "0");
+    const double F_hertz = 16.0 / 3.0 * G * std::sqrt(R) * std::pow(d_max, 1.5);
+    const double a_hertz = std::sqrt(R * d_max);
+
+    // The contact zone (radius 0.25 R, 1.8 a) refined from 0.04 R (a / 3.5) to 0.02 R (a / 7)
+    std::vector<double> force_errors;
+    std::map<double, Pressed> quarter;
+    for (double h : {0.04, 0.028, 0.02})
+    {
+      const Pressed& p = quarter[h] = press(comm, h, 1);
+      const std::string level = "quarter, h_contact = " + std::to_string(h) + " ("
+                                + std::to_string(p.dofs) + " dofs, " + std::to_string(p.steps)
+                                + " steps, " + std::to_string(p.iterations)
+                                + " Newton iterations, " + std::to_string(p.cutbacks)
+                                + " cut-backs, " + std::to_string(p.active_nodes)
+                                + " nodes in contact)";
+      force_errors.push_back(std::abs(p.force / F_hertz - 1));
+      checks.require(level + ": force " + std::to_string(p.force) + " vs Hertz "
+                         + std::to_string(F_hertz) + ", radius " + std::to_string(p.radius)
+                         + " vs " + std::to_string(a_hertz),
+                     std::isfinite(p.force) && std::isfinite(p.radius));
+      // An exact active set: every candidate node is on or in front of the plane
+      checks.absolute(level + ": largest penetration / d", p.penetration / d_max, 0, 1e-10);
+    }
+    // 3% (the issue's bound): beyond the discretisation, the body's finite size (O(a/L),
+    // L = 4R) and the neo-Hookean nonlinearity at a/R = 0.14 separate it from Hertz's linear
+    // half-space; measured on h_contact = 0.014: force -0.86%, radius +1.4%.
+    const Pressed& finest = quarter.at(0.02);
+    checks.relative("finest mesh: contact force against Hertz", finest.force, F_hertz, 0.03);
+    checks.relative("finest mesh: contact radius against Hertz", finest.radius, a_hertz, 0.03);
+    checks.require("the force error shrinks under refinement ("
+                       + std::to_string(force_errors.front()) + " -> "
+                       + std::to_string(force_errors.back()) + ")",
+                   force_errors.back() < force_errors.front());
+
+    // The quarter model against the half model (one symmetry plane instead of two, the same
+    // mesh size): their difference must stay within the quarter's own error at that size,
+    // measured against Hertz (force 1.3%, radius 2.4% at h_contact = 0.028; the half model
+    // differs by 0.01% and 0.4%). A wrong symmetry condition changes the force by far more.
+    const Pressed half = press(comm, 0.028, 2), &same_size = quarter.at(0.028);
+    checks.relative("half model (" + std::to_string(half.dofs) + " dofs): force against the "
+                        + "quarter's (tolerance: the quarter's error against Hertz)",
+                    half.force, same_size.force, std::abs(same_size.force / F_hertz - 1));
+    checks.relative("half model: radius against the quarter's", half.radius, same_size.radius,
+                    std::abs(same_size.radius / a_hertz - 1));
+    if (argc > 1 && argv[1][0] != '-' && dolfinx::MPI::rank(comm) == 0)
+      std::ofstream(argv[1]) << nlohmann::json{{"status", "completed"},
+                                               {"mpi_ranks", dolfinx::MPI::size(comm)},
+                                               {"force", finest.force},
+                                               {"radius", finest.radius}}
+                                        .dump(2);
+    status = checks.finish();
+  }
+  SlepcFinalize();
+  return status;
+}

@@ -1,24 +1,6 @@
-"""Contact-patch functionals for gelx::RigidPlaneContact on P2 tetrahedra.
+"""Contact-patch area on P2 tetrahedra (see _contact.py): coefficients u (displacement) and
+level_set (RigidPlaneContact::contact_level_set), constant normal; facets tagged 1."""
+import _contact
 
-contact_area = int_{ds(1)} H(phi) |n_plane . cof(F) N| dA: the current area of the contact
-patch (cof F N dA = n da, Nanson's formula), where phi is the contact level set
-(RigidPlaneContact::contact_level_set; all its components are equal), positive in contact, and
-`normal` the plane's normal. The Heaviside step is integrated with a degree-8 rule so that a
-triangle the patch edge crosses counts with the part of it where the interpolated phi > 0.
-"""
-import ufl
-import materials
-
-cell = "tetrahedron"
-mesh = ufl.Mesh(ufl.VectorElement("Lagrange", cell, 1))
-V = ufl.FunctionSpace(mesh, ufl.VectorElement("Lagrange", cell, 2))
-u = ufl.Coefficient(V)        # displacement
-level_set = ufl.Coefficient(V)  # contact level set
-normal = ufl.Constant(mesh, shape=(3,))
-
-F = materials.deformation_gradient(u)
-N = ufl.FacetNormal(mesh)
-ds = ufl.ds(metadata={"quadrature_degree": 8})
-contact_area = ufl.conditional(ufl.gt(level_set[0], 0), 1, 0) * abs(ufl.dot(normal, ufl.cofac(F) * N)) * ds(1)
-
+u, level_set, normal, contact_area = _contact.build("tetrahedron")
 forms = [contact_area]

@@ -1,6 +1,7 @@
 #include "contact.h"
 #include "petsc_utils.h"
 
+#include <algorithm>
 #include <cmath>
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/DofMap.h>
@@ -44,6 +45,12 @@ RigidPlaneContact::RigidPlaneContact(NonlinearProblem& problem,
     _node_dofs.push_back({problem_dof(node, 0), problem_dof(node, 1), problem_dof(node, 2)});
     _X.push_back({X[3 * node], X[3 * node + 1], X[3 * node + 2]});
   }
+  // Round-off in lengths: 1e-10 of the body's extent
+  double extent = 0;
+  for (const auto& X : _X)
+    extent = std::max({extent, std::abs(X[0]), std::abs(X[1]), std::abs(X[2])});
+  MPI_Allreduce(MPI_IN_PLACE, &extent, 1, MPI_DOUBLE, MPI_MAX, V0->mesh()->comm());
+  _release_gap = 1e-10 * extent;
   _lambda.assign(_dof.size(), 0.0);
   _active.assign(_dof.size(), 0);
 
@@ -71,7 +78,12 @@ void RigidPlaneContact::update_active_set(Vec unconstrained_residual)
   {
     _lambda[i] = _side * R[_dof[i]];
     const double gap = _side * (_X[i][_axis] + u[_dof[i]] - _position);
-    _active[i] = _scale[i] * gap < _lambda[i];
+    // A free node enters when it penetrates, a node in contact leaves when it is pulled
+    // (a force below -c_i _release_gap, beyond round-off). The primal-dual test
+    // c gap < lambda also for free nodes reads their out-of-balance force during the
+    // iterations as a contact force and activates nodes that do not touch, which then pull
+    // and leave again: Newton cycled for 40 iterations at d/H = 0.12 in the pyramid scene.
+    _active[i] = _active[i] ? _lambda[i] > -_scale[i] * _release_gap : gap < 0;
   }
   GELX_PETSC(VecRestoreArrayRead(unconstrained_residual, &R));
 }
@@ -125,27 +137,29 @@ ContactState RigidPlaneContact::state()
 std::shared_ptr<const dolfinx::fem::Function<double>> RigidPlaneContact::contact_level_set()
 {
   state(); // lambda at the current unknowns
-  const auto& u = _problem.u()->x()->array();
   auto values = _level_set->x()->mutable_array();
   std::fill(values.begin(), values.end(), 0.0);
-  for (std::size_t i = 0; i < _dof.size(); ++i)
-  {
-    const double gap = _side * (_X[i][_axis] + u[_dof[i]] - _position);
-    std::fill_n(values.begin() + 3 * _node[i], 3, _lambda[i] / _scale[i] - gap);
-  }
+  const std::vector<Node> current = nodes();
+  for (std::size_t i = 0; i < current.size(); ++i)
+    std::fill_n(values.begin() + 3 * _node[i], 3, current[i].level_set);
   _level_set->x()->scatter_fwd();
   return _level_set;
 }
 
-std::vector<std::array<double, 4>> RigidPlaneContact::active_nodes() const
+std::vector<RigidPlaneContact::Node> RigidPlaneContact::nodes() const
 {
   const auto& u = _problem.u()->x()->array();
-  std::vector<std::array<double, 4>> nodes;
+  std::vector<Node> result;
   for (std::size_t i = 0; i < _dof.size(); ++i)
-    if (_active[i])
-      nodes.push_back({_X[i][0] + u[_node_dofs[i][0]], _X[i][1] + u[_node_dofs[i][1]],
-                       _X[i][2] + u[_node_dofs[i][2]], _lambda[i]});
-  return nodes;
+  {
+    Node n{_X[i], _X[i], _lambda[i], 0, bool(_active[i])};
+    for (int c = 0; c < 3; ++c)
+      n.x[c] += u[_node_dofs[i][c]];
+    const double gap = _side * (n.x[_axis] - _position);
+    n.level_set = _lambda[i] / _scale[i] - gap;
+    result.push_back(n);
+  }
+  return result;
 }
 
 } // namespace gelx

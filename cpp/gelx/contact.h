@@ -6,6 +6,7 @@
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/fem/FunctionSpace.h>
 #include <dolfinx/mesh/MeshTags.h>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -22,7 +23,7 @@ struct ContactState
 
 /// The equilibrium problem with the unilateral constraint of a rigid plane
 /// x_k = position (axis k; the body on the side `side` = +1 or -1 of it), solved by a
-/// semismooth (primal-dual active-set) Newton method on the nodes of a candidate surface.
+/// Newton method with an active set on the nodes of a candidate surface.
 ///
 /// Why an exact active set: the hard case of the pyramid scene is contact that starts at one
 /// sharp apex node and grows into a patch with concave edges. A penalty lets the apex sink into
@@ -34,15 +35,14 @@ struct ContactState
 ///
 /// Every candidate node i carries the complementarity conditions gap_i >= 0, lambda_i >= 0,
 /// gap_i lambda_i = 0, with gap_i = side (X_i + u_i - position) and the contact force
-/// lambda_i = side R_i, R the residual of the unconstrained problem. They are the root of
-/// min(c_i gap_i, lambda_i) (c_i the tangent's diagonal, which gives both terms units of force),
-/// whose Newton step replaces the rows of the active nodes, where c_i gap_i < lambda_i, by
-/// u_i - u_i* with u_i* the displacement that closes the gap (a Dirichlet row, like those of
-/// NonlinearProblem); the others keep R_i. The
-/// active set is re-evaluated at every iterate from these quantities, so the solver (NewtonSolver,
-/// with its line search and admissibility checks, inside LoadStepper) needs nothing else.
-/// Nodes of the candidate surface on the far side of the plane are added to the active set at
-/// the next iterate, so a converged state has no penetration at any node.
+/// lambda_i = side R_i, R the residual of the unconstrained problem. They are solved by an
+/// active set updated at every Newton iterate: a free node enters the set when it penetrates
+/// (gap_i < 0), a node in the set leaves it when its force turns to tension (lambda_i < 0).
+/// The rows of the nodes in the set are replaced by u_i - u_i*, u_i* the displacement that
+/// closes the gap (a Dirichlet row, like those of NonlinearProblem), the others keep R_i, so
+/// the solver (NewtonSolver, with its line search and admissibility checks, inside LoadStepper)
+/// needs nothing else. A converged state has no penetration at any node and no tension in the
+/// patch. c_i, the tangent's diagonal, turns gaps into forces for the contact level set.
 class RigidPlaneContact : public NonlinearSystem
 {
 public:
@@ -79,9 +79,17 @@ public:
   /// gives the contact area without the O(h) steps of counting whole facets. Collective.
   std::shared_ptr<const dolfinx::fem::Function<double>> contact_level_set();
 
-  /// Current coordinates of the active nodes owned by this rank (x, y, z per node), and the
-  /// contact force each carries, for contact widths and pressure maps.
-  std::vector<std::array<double, 4>> active_nodes() const;
+  /// The candidate nodes owned by this rank at the state of the last state() call: for
+  /// contact widths and patch maps.
+  struct Node
+  {
+    std::array<double, 3> X; ///< reference position
+    std::array<double, 3> x; ///< current position
+    double force;            ///< contact force (lambda)
+    double level_set;        ///< lambda / c - gap, positive in contact
+    bool active;
+  };
+  std::vector<Node> nodes() const;
 
 private:
   /// Recompute, at the current unknowns, lambda and the active set (into _lambda, _active).
@@ -97,6 +105,7 @@ private:
   std::vector<std::array<double, 3>> _X;
   std::vector<std::int32_t> _node;   ///< the candidate's node in the displacement space
   std::vector<double> _scale;        ///< c_i
+  double _release_gap = 0;           ///< round-off of lengths (see update_active_set)
   std::vector<double> _lambda;       ///< contact force per candidate
   std::vector<char> _active;
   PetscInt _first_row = 0; ///< global index of the first owned row

@@ -10,9 +10,10 @@
 namespace gelx
 {
 
-void LoadSteppingOptions::declare(Parameters& p)
+void LoadSteppingOptions::declare(Parameters& p) { declare(p, LoadSteppingOptions{}); }
+
+void LoadSteppingOptions::declare(Parameters& p, const LoadSteppingOptions& d)
 {
-  const LoadSteppingOptions d;
   auto in_unit_interval = [](double v) { return v > 0 && v <= 1 ? "" : "must be in (0, 1]"; };
   p.add("load stepping", "dt", d.dt, "first load-factor step", in_unit_interval);
   p.add("load stepping", "dt_min", d.dt_min, "smallest step", in_unit_interval);

@@ -28,7 +28,9 @@ struct LoadSteppingOptions
   int easy_iterations = 5; ///< a step that converged in at most this many iterations is easy
   int max_cutbacks = 12;   ///< cut-backs allowed within one step (0 disables cut-back)
 
-  /// Declare the options as scene parameters (section "load stepping").
+  /// Declare the options as scene parameters (section "load stepping"), with a scene's own
+  /// defaults.
+  static void declare(Parameters& p, const LoadSteppingOptions& defaults);
   static void declare(Parameters& p);
   static LoadSteppingOptions from(const Parameters& p);
 };

@@ -21,6 +21,8 @@
 #include "euler_column.h"
 
 #include <chrono>
+#include <map>
+#include <memory>
 #include <gelx/arclength.h>
 #include <gelx/load_stepping.h>
 #include <gelx/output.h>
@@ -120,19 +122,27 @@ int main(int argc, char* argv[])
       return deflection;
     };
     auto set_load = [&](double lambda) { column.set_load_factor(lambda); };
+    // A continuation with its own options prefix and the scene's defaults for it
+    auto continuation = [&](const std::string& prefix,
+                            const std::map<std::string, std::string>& defaults)
+    {
+      for (const auto& [name, value] : defaults)
+        gelx::set_default_option(prefix, name, value);
+      gelx::set_default_option(prefix, "monitor", "0");
+      return std::make_unique<gelx::ArcLength>(comm, column.problem(), set_load, prefix);
+    };
+    // After the bifurcation: a cylindrical constraint on the displacement (its 2-norm reaches
+    // ~1e2 on the default mesh)
+    const std::map<std::string, std::string> buckled = {{"ds", "1"}, {"ds_max", "40"}};
 
     // 3. The perfect column along its straight path. Steps of at most 0.1 Euler loads, with the
     //    load weighed into the constraint (psi = 1) since the straight column barely moves; the
     //    tangent's eigenvalue nearest zero is computed at every point.
-    gelx::set_default_option("straight_arclength_", "psi", "1");
-    gelx::set_default_option("straight_arclength_", "ds", "0.1");
-    gelx::set_default_option("straight_arclength_", "ds_max", "0.1");
-    gelx::set_default_option("straight_arclength_", "stability", "1");
-    gelx::set_default_option("straight_arclength_", "monitor", "0");
-    gelx::ArcLength straight(comm, column.problem(), set_load, "straight_arclength_");
+    auto straight = continuation(
+        "straight_arclength_", {{"psi", "1"}, {"ds", "0.1"}, {"ds_max", "0.1"}, {"stability", "1"}});
     double lambda_stable = 0, lambda_unstable = NAN;
     step_start = clock::now();
-    straight.run(0.0, max_steps,
+    straight->run(0.0, max_steps,
                  [&](const gelx::PathPoint& pt)
                  {
                    record("straight", pt);
@@ -143,16 +153,12 @@ int main(int argc, char* argv[])
       throw gelx::ConvergenceError("no bifurcation found on the straight path up to "
                                    + std::to_string(lambda_stable) + " Euler loads");
 
-    // 4. Branch switching: leave along the critical mode and follow the buckled branch. A
-    //    cylindrical constraint on the displacement (its 2-norm reaches ~1e2 on the default mesh)
-    gelx::set_default_option("branch_arclength_", "ds", "1");
-    gelx::set_default_option("branch_arclength_", "ds_max", "40");
-    gelx::set_default_option("branch_arclength_", "monitor", "0");
-    gelx::ArcLength branch(comm, column.problem(), set_load, "branch_arclength_");
-    const double stability_at_switch = branch.switch_branch();
+    // 4. Branch switching: leave along the critical mode and follow the buckled branch
+    auto branch = continuation("branch_arclength_", buckled);
+    const double stability_at_switch = branch->switch_branch();
     double branch_deflection = 0, branch_load = NAN;
     step_start = clock::now();
-    branch.run(lambda_unstable, max_steps,
+    branch->run(lambda_unstable, max_steps,
                [&](const gelx::PathPoint& pt)
                {
                  branch_deflection = record("branch", pt);
@@ -167,13 +173,10 @@ int main(int argc, char* argv[])
     gelx::seed_imperfection(*column.mesh().mesh, {modes.at(0)}, {amplitude});
     column.displacement()->x()->set(0.0);
     column.set_load_factor(0.0);
-    gelx::set_default_option("imperfect_arclength_", "ds", "1");
-    gelx::set_default_option("imperfect_arclength_", "ds_max", "40");
-    gelx::set_default_option("imperfect_arclength_", "monitor", "0");
-    gelx::ArcLength imperfect(comm, column.problem(), set_load, "imperfect_arclength_");
+    auto imperfect = continuation("imperfect_arclength_", buckled);
     double imperfect_deflection = 0, imperfect_load = NAN;
     step_start = clock::now();
-    imperfect.run(0.0, max_steps,
+    imperfect->run(0.0, max_steps,
                   [&](const gelx::PathPoint& pt)
                   {
                     imperfect_deflection = record("imperfect", pt);

@@ -1,0 +1,58 @@
+"""Plots of a pyramid run (thesis Figs. 2.3b, 2.4a, 2.7a): pyramid.png and patch.png.
+
+usage: plot.py OUTPUT_DIR
+"""
+import csv
+import json
+import pathlib
+import sys
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+out = pathlib.Path(sys.argv[1])
+s = json.loads((out / "summary.json").read_text())
+rows = [r for r in csv.DictReader(open(out / "steps.csv"))]
+d = np.array([float(r["d_over_H"]) for r in rows])
+lc = np.array([float(r["contact_width_over_L"]) for r in rows])
+f = np.array([float(r["force"]) for r in rows])
+G = s["parameters"]["G"]
+
+fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+left.plot(d, lc, "o", ms=4, label="gelx")
+left.plot(d, s["slope_lc_vs_d"] * d + s["intercept_lc_vs_d"], "k-",
+          label=f"fit: slope {s['slope_lc_vs_d']:.3f}, R² {s['r2_lc_vs_d']:.4f}")
+left.plot(d, 0.86 * d, "r--", label="thesis fit, slope 0.86")
+left.plot(d, d, ":", color="gray", label="truncated pyramid, slope 1")
+left.set_xlabel("d / H")
+left.set_ylabel("l_c / L")
+left.set_title("contact width against indentation (Fig. 2.3b)")
+left.legend(fontsize=8)
+left.grid(alpha=0.3)
+# Incompressible neo-Hookean: f scales with G at a fixed geometry (one modulus, no other
+# stress scale), so the curves of other moduli are this run's force times G'/G
+for G_other in (0.25, 0.5, 1.0, 2.0, 3.0):
+    right.plot(np.sqrt(f * G_other / G), lc, "o-", ms=3, label=f"G = {G_other:g} MPa")
+right.set_xlabel("f^(1/2) (uN^(1/2))")
+right.set_ylabel("l_c / L")
+right.set_title(f"l_c against f^(1/2) (Fig. 2.4a), R² = {s['r2_lc_vs_sqrtf']:.4f}")
+right.legend(fontsize=8)
+right.grid(alpha=0.3)
+fig.tight_layout()
+fig.savefig(out / "pyramid.png", dpi=120)
+
+patch = np.loadtxt(out / "patch.csv", delimiter=",", skiprows=1, ndmin=2)
+if len(patch):
+    fig, ax = plt.subplots(figsize=(5, 4.5))
+    sc = ax.scatter(patch[:, 0], patch[:, 1], c=patch[:, 2], s=12, cmap="viridis")
+    fig.colorbar(sc, label="nodal contact force (uN)")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (um)")
+    ax.set_ylabel("y (um)")
+    ax.set_title(f"contact patch at d/H = {s['final_d_over_H']:.2f}: "
+                 f"A_c / l_c² = {s['area_ratio']:.3f}")
+    fig.tight_layout()
+    fig.savefig(out / "patch.png", dpi=120)
+print(f"wrote {out / 'pyramid.png'} and {out / 'patch.png'}")

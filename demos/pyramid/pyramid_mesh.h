@@ -1,0 +1,39 @@
+#pragma once
+/// @file pyramid_mesh.h
+/// A structured hexahedral mesh of one quarter of the pyramid unit cell (thesis Fig. 2.2).
+
+#include <gelx/mesh.h>
+#include <mpi.h>
+
+namespace gelx::scenes
+{
+
+struct PyramidGeometry
+{
+  double L = 8.0;  ///< pyramid base width (um); height H = L / sqrt(2)
+  double W = 64.0; ///< unit cell width (um)
+  double t = 32.0; ///< base thickness (um)
+  int cells = 2;   ///< hexahedra along each edge of a pyramid block
+  int tip_levels = 3; ///< apex refinement: the tip is cut at H/2, H/4, ... this many times
+  double growth = 1.5; ///< size ratio of neighbouring cells in the base, away from the pyramid
+};
+
+/// The quarter x, y >= 0 of the unit cell [-W/2, W/2]^2: the base [0, W/2]^2 x [0, t] and on
+/// it the pyramid over [0, L/2]^2 with its apex at (0, 0, t + H), all hexahedra.
+///
+/// Why this mesh: contact starts at the apex, a sharp corner where tetrahedra are crushed
+/// (shared/NOTES.md: uniform P2-P1 tetrahedra stall at d/H = 0.2-0.34). As in thesis
+/// Fig. 2.2b, each of the two tetrahedra of the quarter pyramid (split by its diagonal plane
+/// x = y) is split into hexahedra: near the apex into four (at each vertex: its edge
+/// midpoints, face centroids and the centroid), and below a stack of horizontal cuts at
+/// H/2, H/4, ... from the apex into triangular frusta of three hexahedra each, so that the
+/// cells shrink geometrically toward the apex and every cell keeps the shape of a corner of the
+/// tetrahedron. The base is extruded from its top face in layers that grow away from the
+/// pyramid.
+///
+/// Physical groups: volume "body"; surfaces "bottom" (z = 0), "sym_x" (x = 0), "sym_y" (y = 0),
+/// "side_x" (x = W/2), "side_y" (y = W/2), and "lateral", the two lateral faces of the pyramid
+/// (the contact candidates).
+TaggedMesh pyramid_mesh(MPI_Comm comm, const PyramidGeometry& g);
+
+} // namespace gelx::scenes

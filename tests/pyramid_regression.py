@@ -1,0 +1,32 @@
+"""Check a short pyramid run (demos/pyramid, coarse mesh, d/H up to 0.3) against stored values
+(tests/pyramid_reference.json, from a run of the same options) and the contact's invariants.
+
+- the stored force, contact width, area ratio and fitted slope within 1e-6 relative: every step
+  converges Newton to |R| <= 1e-10 |R0| with a direct solver, so reruns and other rank counts
+  differ by round-off (measured below 1e-9), while a change of the physics, the mesh or the
+  contact method moves them by far more;
+- no node behind the substrate (an exact active set: 0 up to the 1e-10 release band of
+  RigidPlaneContact);
+- the width grows with the indentation at a slope between 0.7 and 1: below the truncated
+  pyramid's 1 and near the thesis' 0.86.
+
+usage: pyramid_regression.py OUTPUT_DIR
+"""
+import json
+import pathlib
+import sys
+
+from checks import Checks
+
+out = pathlib.Path(sys.argv[1])
+s = json.loads((out / "summary.json").read_text())
+reference = json.loads((pathlib.Path(__file__).parent / "pyramid_reference.json").read_text())
+checks = Checks()
+checks.require(f"run {s['status']} to d/H = {s['final_d_over_H']}",
+               s["status"] == "completed" and abs(s["final_d_over_H"] - 0.3) < 1e-12)
+for key in ("final_force", "final_contact_width_over_L", "area_ratio", "slope_lc_vs_d"):
+    checks.relative(f"{key} against the stored value", s[key], reference[key], 1e-6)
+checks.absolute("largest penetration (um)", s["max_penetration"], 0, 1e-8)
+checks.require(f"slope of l_c/L against d/H {s['slope_lc_vs_d']:.4f} in (0.7, 1)",
+               0.7 < s["slope_lc_vs_d"] < 1.0)
+checks.finish()

@@ -9,7 +9,8 @@
 // {111} facets of a silicon mould) stands on a base of thickness t in a square array of period
 // W; the base is bonded to a rigid backing. A rigid, frictionless substrate first touches the
 // apex and then moves toward the base by d. The elastomer is incompressible neo-Hookean
-// (Eq. 1.10) in mixed u-p form on Q2-Q1 hexahedra, the analogue of the thesis' hybrid bricks.
+// (Eq. 1.10; or Mooney-Rivlin, --mooney_share) in mixed u-p form on Q2-Q1 hexahedra, the
+// analogue of the thesis' hybrid bricks.
 // By symmetry one quarter of the unit cell is modelled (pyramid_mesh.h: a structured hexahedral
 // tip graded toward the apex, after thesis Fig. 2.2b). The contact is an exact active set on
 // the nodes of the lateral faces (gelx::RigidPlaneContact). Per step we record the force f,
@@ -67,6 +68,9 @@ int main(int argc, char* argv[])
   prm.add("mesh", "growth", g0.growth, "cell size ratio in the base, away from the pyramid",
           [](double v) { return v >= 1 ? "" : "must be at least 1"; });
   prm.add("material", "G", 1.0, "shear modulus (MPa)", gelx::Parameters::positive);
+  prm.add("material", "mooney_share", 0.0,
+          "C01 / (C10 + C01): 0 neo-Hookean, > 0 Mooney-Rivlin with C10 + C01 = G/2",
+          [](double v) { return v >= 0 && v < 1 ? "" : "must be in [0, 1)"; });
   prm.add("loading", "d_max", 0.8, "final indentation d/H",
           [](double v) { return v > 0 && v < 1 ? "" : "must be in (0, 1)"; });
   // Steps of 0.0125 H growing to 0.025 H (at d_max = 0.8): the patch gains a ring of nodes in
@@ -95,7 +99,7 @@ int main(int argc, char* argv[])
     const double G = prm.real("G"), d_max = prm.real("d_max");
 
     // 2. The quarter cell: mesh, material, symmetry, contact
-    gelx::scenes::PressedPyramid pyramid(comm, g, G);
+    gelx::scenes::PressedPyramid pyramid(comm, g, G, prm.real("mooney_share"));
     const double H = pyramid.height();
 
     // 3. Press: the substrate moves by d = s d_max H as the load factor s goes from 0 to 1

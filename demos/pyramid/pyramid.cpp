@@ -31,7 +31,8 @@ std::vector<double> all_gather(MPI_Comm comm, const std::vector<double>& local)
 }
 } // namespace
 
-PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry, double G)
+PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry, double G,
+                               double mooney_share)
     : _g(geometry), _H(geometry.L / std::sqrt(2.0)), _mesh(pyramid_mesh(comm, geometry))
 {
   auto W = std::make_shared<fem::FunctionSpace>(
@@ -39,7 +40,10 @@ PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry, d
   _w = std::make_shared<fem::Function<double>>(W);
   const std::map<std::string, std::shared_ptr<const fem::Constant<double>>> constants
       = {{"G", std::make_shared<fem::Constant<double>>(G)},
+         {"C10", std::make_shared<fem::Constant<double>>((1 - mooney_share) * G / 2)},
+         {"C01", std::make_shared<fem::Constant<double>>(mooney_share * G / 2)},
          {"bulk_compliance", std::make_shared<fem::Constant<double>>(0.0)}};
+  const bool neo_hookean = mooney_share == 0;
   auto form = [&](ufcx_form* f, std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces)
   {
     return std::make_shared<fem::Form<double>>(
@@ -56,7 +60,8 @@ PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry, d
   _bcs->fix(_mesh.tag("side_y"), 1);
   _bcs->update(0);
   _problem = std::make_unique<NonlinearProblem>(
-      _w, form(form_mixed_hex_residual_nh, {W}), form(form_mixed_hex_tangent_nh, {W, W}),
+      _w, form(neo_hookean ? form_mixed_hex_residual_nh : form_mixed_hex_residual_mr, {W}),
+      form(neo_hookean ? form_mixed_hex_tangent_nh : form_mixed_hex_tangent_mr, {W, W}),
       _bcs->bcs(),
       std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
           *expression_mixed_hex_det_F, {{"w", _w}}, {}, _mesh.mesh)));
@@ -65,7 +70,8 @@ PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry, d
                                                  _mesh.tag("lateral"), 2, -1);
   set_indentation(0);
   _stress = std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
-      *expression_mixed_hex_stress_nh, {{"w", _w}}, constants, _mesh.mesh));
+      neo_hookean ? *expression_mixed_hex_stress_nh : *expression_mixed_hex_stress_mr,
+      {{"w", _w}}, constants, _mesh.mesh));
 
   // The patch area: the area form integrates ds(1) over the lateral faces
   _u = collapse_sub_function(*_w, 0);

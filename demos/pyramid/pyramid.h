@@ -1,8 +1,9 @@
 #pragma once
 /// @file pyramid.h
 /// An elastomeric pyramid on its base pressed by a rigid substrate (thesis ch. 2): one quarter
-/// of the unit cell (pyramid_mesh.h), incompressible neo-Hookean in mixed u-p form on Q2-Q1
-/// hexahedra (forms/mixed_hex.py), frictionless contact with the plane (gelx::RigidPlaneContact).
+/// of the unit cell (pyramid_mesh.h), incompressible neo-Hookean or Mooney-Rivlin in mixed u-p
+/// form on Q2-Q1 hexahedra (forms/mixed_hex.py), frictionless contact with the plane
+/// (gelx::RigidPlaneContact).
 
 #include "pyramid_mesh.h"
 
@@ -31,7 +32,9 @@ struct ContactMeasures
 class PressedPyramid
 {
 public:
-  PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry, double G);
+  /// Shear modulus G; mooney_share = C01 / (C10 + C01): 0 is neo-Hookean (Eq. 1.10), > 0 the
+  /// incompressible Mooney-Rivlin solid with C10 + C01 = G/2 (chapter 2's constitutive check).
+  PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry, double G, double mooney_share);
 
   double height() const { return _H; }
   NonlinearSystem& system() { return *_contact; }

@@ -94,15 +94,9 @@ Pressed press(MPI_Comm comm, double h_contact, int quarters)
 
   // The patch area: where the contact level set is positive, on the current surface
   auto u = gelx::collapse_sub_function(*w, 0);
-  const std::vector<std::int32_t> contact_facets = geo.facet_tags->find(geo.tag("contact"));
-  auto patch = std::make_shared<mesh::MeshTags<std::int32_t>>(
-      geo.mesh, 2, std::vector<std::int32_t>(contact_facets),
-      std::vector<std::int32_t>(contact_facets.size(), 1));
-  auto normal = std::make_shared<fem::Constant<double>>(std::vector<double>{0, 0, 1});
-  auto area_form = fem::create_form<double>(
-      *form_contact_contact_area, {}, {{"u", u}, {"level_set", contact.contact_level_set()}},
-      {{"normal", normal}}, {{fem::IntegralType::exterior_facet, patch.get()}}, geo.mesh);
-  p.radius = std::sqrt(copies * gelx::assemble_global_scalar(area_form) / M_PI);
+  contact.contact_level_set();
+  auto area_form = contact.area_form(*form_contact_contact_area, u);
+  p.radius = std::sqrt(copies * gelx::assemble_global_scalar(*area_form) / M_PI);
   return p;
 }
 } // namespace

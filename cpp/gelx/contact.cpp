@@ -5,6 +5,7 @@
 #include <cmath>
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/DofMap.h>
+#include <dolfinx/fem/utils.h>
 
 namespace gelx
 {
@@ -52,6 +53,10 @@ RigidPlaneContact::RigidPlaneContact(NonlinearProblem& problem,
   MPI_Allreduce(MPI_IN_PLACE, &extent, 1, MPI_DOUBLE, MPI_MAX, V0->mesh()->comm());
   _release_gap = 1e-10 * extent;
   _lambda.assign(_dof.size(), 0.0);
+  const std::vector<std::int32_t> surface = facet_tags.find(tag);
+  _surface = std::make_shared<dolfinx::mesh::MeshTags<std::int32_t>>(
+      V0->mesh(), fdim, std::vector<std::int32_t>(surface),
+      std::vector<std::int32_t>(surface.size(), 1));
   _active.assign(_dof.size(), 0);
 
   // c_i: the diagonal of the tangent at the current (reference) state
@@ -136,7 +141,6 @@ ContactState RigidPlaneContact::state()
 
 std::shared_ptr<const dolfinx::fem::Function<double>> RigidPlaneContact::contact_level_set()
 {
-  state(); // lambda at the current unknowns
   auto values = _level_set->x()->mutable_array();
   std::fill(values.begin(), values.end(), 0.0);
   const std::vector<Node> current = nodes();
@@ -144,6 +148,18 @@ std::shared_ptr<const dolfinx::fem::Function<double>> RigidPlaneContact::contact
     std::fill_n(values.begin() + 3 * _node[i], 3, current[i].level_set);
   _level_set->x()->scatter_fwd();
   return _level_set;
+}
+
+std::shared_ptr<dolfinx::fem::Form<double>>
+RigidPlaneContact::area_form(const ufcx_form& form,
+                             std::shared_ptr<const dolfinx::fem::Function<double>> u) const
+{
+  std::vector<double> normal(3, 0.0);
+  normal[_axis] = 1;
+  return std::make_shared<dolfinx::fem::Form<double>>(dolfinx::fem::create_form<double>(
+      form, {}, {{"u", u}, {"level_set", _level_set}},
+      {{"normal", std::make_shared<dolfinx::fem::Constant<double>>(normal)}},
+      {{dolfinx::fem::IntegralType::exterior_facet, _surface.get()}}, u->function_space()->mesh()));
 }
 
 std::vector<RigidPlaneContact::Node> RigidPlaneContact::nodes() const

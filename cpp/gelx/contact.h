@@ -3,11 +3,13 @@
 /// Frictionless, non-adhesive contact of a hyperelastic body with a rigid plane.
 
 #include "problem.h"
+#include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/fem/FunctionSpace.h>
 #include <dolfinx/mesh/MeshTags.h>
 #include <array>
 #include <memory>
+#include <ufcx.h>
 #include <vector>
 
 namespace gelx
@@ -71,13 +73,20 @@ public:
   /// Force, active set size and penetration at the current state. Collective.
   ContactState state();
 
-  /// The contact level set on the (collapsed) displacement space, every component equal:
-  /// phi_i = lambda_i / c_i - gap_i at the candidate nodes, positive in contact (where the
-  /// node's force, as a displacement, exceeds its gap) and negative outside, zero elsewhere.
-  /// Its interpolant's zero line locates the patch edge between an active and an inactive node,
-  /// so a surface integral of H(phi) with the current projected area element (forms/contact.py)
-  /// gives the contact area without the O(h) steps of counting whole facets. Collective.
+  /// The contact level set on the (collapsed) displacement space, every component equal, at
+  /// the state of the last state() call: phi_i = lambda_i / c_i - gap_i at the candidate
+  /// nodes, positive in contact (where the node's force, as a displacement, exceeds its gap)
+  /// and negative outside, zero elsewhere. Its interpolant's zero line locates the patch edge
+  /// between an active and an inactive node. Collective.
   std::shared_ptr<const dolfinx::fem::Function<double>> contact_level_set();
+
+  /// The contact-area functional `form` of forms/_contact.py (generated as contact_area in
+  /// contact.py, contact_hex.py) on the candidate surface: the current area where the level set
+  /// is positive, without the O(h) steps of counting whole facets. `u` is the displacement as
+  /// a plain function on the collapsed displacement space (refreshed by the caller). Assemble
+  /// it after state() and contact_level_set().
+  std::shared_ptr<dolfinx::fem::Form<double>>
+  area_form(const ufcx_form& form, std::shared_ptr<const dolfinx::fem::Function<double>> u) const;
 
   /// The candidate nodes owned by this rank at the state of the last state() call: for
   /// contact widths and patch maps.
@@ -110,6 +119,8 @@ private:
   std::vector<char> _active;
   PetscInt _first_row = 0; ///< global index of the first owned row
   std::shared_ptr<dolfinx::fem::Function<double>> _level_set;
+  /// The candidate facets, tagged 1 (the area form's ds(1))
+  std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _surface;
 };
 
 } // namespace gelx

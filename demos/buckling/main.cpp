@@ -22,6 +22,8 @@
 
 #include <chrono>
 #include <map>
+#include <tuple>
+#include <utility>
 #include <memory>
 #include <gelx/arclength.h>
 #include <gelx/load_stepping.h>
@@ -101,16 +103,17 @@ int main(int argc, char* argv[])
     double path_time = 0;
     int path_steps = 0, corrector_iterations = 0;
     auto step_start = clock::now();
+    // Writes one path point; returns its (deflection / L, axial force / Euler load)
     auto record = [&](const std::string& path, const gelx::PathPoint& pt)
     {
       path_time += seconds(step_start);
       ++path_steps;
       corrector_iterations += pt.iterations;
-      const double deflection = column.lateral_deflection();
+      const double deflection = column.lateral_deflection(), force = column.axial_force();
       writer.append_step({{"path", path},
                           {"step", pt.step},
                           {"load_factor", pt.load_factor},
-                          {"axial_force_over_euler", column.axial_force()},
+                          {"axial_force_over_euler", force},
                           {"deflection_over_L", deflection},
                           {"elastica_load_over_euler",
                            modes[0].load_factor * column.elastica_load_ratio(deflection)},
@@ -119,7 +122,7 @@ int main(int argc, char* argv[])
                           {"stability", std::isnan(pt.stability) ? nlohmann::json(nullptr)
                                                                  : nlohmann::json(pt.stability)}});
       step_start = clock::now();
-      return deflection;
+      return std::pair{deflection, force};
     };
     auto set_load = [&](double lambda) { column.set_load_factor(lambda); };
     // A continuation with its own options prefix and the scene's defaults for it
@@ -161,8 +164,7 @@ int main(int argc, char* argv[])
     branch->run(lambda_unstable, max_steps,
                [&](const gelx::PathPoint& pt)
                {
-                 branch_deflection = record("branch", pt);
-                 branch_load = column.axial_force();
+                 std::tie(branch_deflection, branch_load) = record("branch", pt);
                  displacement.update();
                  branch_writer.write_fields(pt.step, {displacement.function()});
                },
@@ -179,8 +181,7 @@ int main(int argc, char* argv[])
     imperfect->run(0.0, max_steps,
                   [&](const gelx::PathPoint& pt)
                   {
-                    imperfect_deflection = record("imperfect", pt);
-                    imperfect_load = column.axial_force();
+                    std::tie(imperfect_deflection, imperfect_load) = record("imperfect", pt);
                   },
                   [&](const gelx::PathPoint&) { return imperfect_deflection >= max_deflection; });
 

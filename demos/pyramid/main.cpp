@@ -118,12 +118,11 @@ int main(int argc, char* argv[])
           .run(
               [&](const gelx::StepRecord& step)
               {
-                last = pyramid.measure();
+                last = pyramid.measure(); // also refreshes the displacement
                 const double d = step.t * d_max;
                 d_tilde.push_back(d);
                 width.push_back(last.width / g.L);
                 sqrt_force.push_back(std::sqrt(last.force));
-                pyramid.displacement();
                 displacement.update();
                 stress.update();
                 auto fields = stress.functions();

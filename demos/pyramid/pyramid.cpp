@@ -73,17 +73,8 @@ PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry, d
       neo_hookean ? *expression_mixed_hex_stress_nh : *expression_mixed_hex_stress_mr,
       {{"w", _w}}, constants, _mesh.mesh));
 
-  // The patch area: the area form integrates ds(1) over the lateral faces
   _u = collapse_sub_function(*_w, 0);
-  const auto lateral = _mesh.facet_tags->find(_mesh.tag("lateral"));
-  _lateral = std::make_shared<mesh::MeshTags<std::int32_t>>(
-      _mesh.mesh, 2, std::vector<std::int32_t>(lateral),
-      std::vector<std::int32_t>(lateral.size(), 1));
-  _area = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      *form_contact_hex_contact_area, {},
-      {{"u", _u}, {"level_set", _contact->contact_level_set()}},
-      {{"normal", std::make_shared<fem::Constant<double>>(std::vector<double>{0, 0, 1})}},
-      {{fem::IntegralType::exterior_facet, _lateral.get()}}, _mesh.mesh));
+  _area = _contact->area_form(*form_contact_hex_contact_area, _u);
 }
 
 void PressedPyramid::set_indentation(double d) { _contact->set_position(_g.t + _H - d); }
@@ -103,7 +94,7 @@ ContactMeasures PressedPyramid::measure()
   m.active = state.active;
   m.penetration = state.max_penetration;
   _contact->contact_level_set();
-  displacement();
+  displacement(); // the area form's displacement
   m.area = 4 * assemble_global_scalar(*_area);
 
   // The width: the patch's corners lie on the pyramid's edges x = y, so l_c = 2 x_corner,

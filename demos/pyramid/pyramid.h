@@ -45,7 +45,8 @@ public:
   /// Move the substrate by d toward the base from its first touch of the apex.
   void set_indentation(double d);
 
-  /// Force, width, area, active set and penetration at the current state. Collective.
+  /// Force, width, area, active set and penetration at the current state; refreshes
+  /// displacement(). Collective.
   ContactMeasures measure();
 
   /// The contact nodes of all four quarters (x, y current, force), on rank 0 (others: empty).
@@ -65,7 +66,6 @@ private:
   std::unique_ptr<RigidPlaneContact> _contact;
   std::shared_ptr<const dolfinx::fem::Expression<double>> _stress;
   std::shared_ptr<dolfinx::fem::Form<double>> _area;
-  std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _lateral; // tagged 1 for the area form
 };
 
 } // namespace gelx::scenes

@@ -1,5 +1,5 @@
-"""Builder shared by contact.py (P2 tetrahedra) and contact_hex.py (Q2 hexahedra): the
-contact-patch functional of gelx::RigidPlaneContact.
+"""Builder shared by contact.py (P2 tetrahedra), contact_hex.py (Q2 hexahedra) and
+contact_hex_q1.py (Q1 hexahedra): the contact-patch functional of gelx::RigidPlaneContact.
 
 contact_area = int_{ds(1)} H(phi) |n_plane . cof(F) N| dA: the current area of the contact
 patch (cof F N dA = n da, Nanson's formula), where phi is the contact level set
@@ -11,9 +11,9 @@ import ufl
 import materials
 
 
-def build(cell):
+def build(cell, displacement_degree=2):
     mesh = ufl.Mesh(ufl.VectorElement("Lagrange", cell, 1))
-    V = ufl.FunctionSpace(mesh, ufl.VectorElement("Lagrange", cell, 2))
+    V = ufl.FunctionSpace(mesh, ufl.VectorElement("Lagrange", cell, displacement_degree))
     u = ufl.Coefficient(V)  # displacement
     level_set = ufl.Coefficient(V)  # contact level set
     normal = ufl.Constant(mesh, shape=(3,))

@@ -91,11 +91,12 @@ def neo_hookean_incompressible(F, p, G, bulk_compliance):
     return G / 2 * (I1_bar - 3) + p * (J - 1) - bulk_compliance * p**2 / 2
 
 
-def mixed_stored_energy(lagrangian, F, p, bulk_compliance):
-    """Stored energy of a mixed law L = W_iso + p (J - 1) - bulk_compliance p^2 / 2 at a
-    solution: W_iso plus the volumetric energy bulk_compliance p^2 / 2 (= K/2 (J - 1)^2 there,
-    since J - 1 = bulk_compliance p); the energy-density output field."""
-    return lagrangian - p * (ufl.det(F) - 1) + bulk_compliance * p**2
+def mixed_stored_energy(lagrangian, volume_change, p, bulk_compliance):
+    """Stored energy of a mixed law L = W_iso + p c - bulk_compliance p^2 / 2, with the volume
+    change c = J - 1 (tr eps for the small-strain law), at a solution: W_iso plus the
+    volumetric energy bulk_compliance p^2 / 2 (= K/2 c^2 there, since c = bulk_compliance p);
+    the energy-density output field."""
+    return lagrangian - p * volume_change + bulk_compliance * p**2
 
 
 def mooney_rivlin_compressible(F, C10, C01, K):
@@ -130,6 +131,19 @@ def linear_elastic(F, G, K):
     """
     eps = small_strain(F)
     return G * ufl.inner(ufl.dev(eps), ufl.dev(eps)) + K / 2 * ufl.tr(eps)**2
+
+
+def linear_elastic_incompressible(F, p, G, bulk_compliance):
+    """Small-strain linear elasticity in mixed displacement-pressure form (chapter 2's
+    linear-elastic variant of the incompressible pyramid),
+        L(F, p) = G dev(eps):dev(eps) + p tr(eps) - bulk_compliance p^2 / 2,
+    bulk_compliance = 0 enforcing tr(eps) = 0; its stress is linear_elastic_stress
+    (2 G dev(eps) + p I). Unlike the hyperelastic laws it is not frame-indifferent: use it for
+    the law's small-strain response on a large-deformation geometry (the contact still sees the
+    current position X + u)."""
+    eps = small_strain(F)
+    return (G * ufl.inner(ufl.dev(eps), ufl.dev(eps)) + p * ufl.tr(eps)
+            - bulk_compliance * p**2 / 2)
 
 
 def linear_elastic_stress(psi, F):

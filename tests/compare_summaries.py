@@ -1,4 +1,5 @@
-"""Compare the quantities of interest of two runs' summary.json (e.g. 2 ranks against 1).
+"""Compare the quantities of interest of two runs' summary.json (e.g. 2 ranks against 1, or a
+symmetry-reduced domain against a larger one).
 
 usage: compare_summaries.py A/summary.json B/summary.json RTOL KEY [KEY ...]
 """
@@ -14,5 +15,5 @@ checks.require(f"both runs completed ({a.get('status')}, {b.get('status')}) with
                f"{a['mpi_ranks']} and {b['mpi_ranks']} ranks",
                a.get("status") == b.get("status") == "completed")
 for key in sys.argv[4:]:
-    checks.relative(f"{key}, {b['mpi_ranks']} ranks against {a['mpi_ranks']}", b[key], a[key], rtol)
+    checks.relative(f"{key}, {sys.argv[2]} against {sys.argv[1]}", b[key], a[key], rtol)
 checks.finish()

@@ -8,13 +8,19 @@
 - no node behind the substrate (an exact active set: 0 up to the 1e-10 release band of
   RigidPlaneContact);
 - the width grows with the indentation at a slope between 0.7 and 1: below the truncated
-  pyramid's 1 and near the thesis' 0.86.
+  pyramid's 1 and near the thesis' 0.86;
+- the STL surface of the last step: the deformed pyramid's top lies on the substrate,
+  z = t + H - d (to float32 round-off: STL stores single precision), and every triangle faces
+  up, out of the body (the lateral faces' outward normals have n_z > 0 and keep it in contact).
 
 usage: pyramid_regression.py OUTPUT_DIR
 """
 import json
+import math
 import pathlib
 import sys
+
+import numpy as np
 
 from checks import Checks
 
@@ -29,4 +35,18 @@ for key in ("final_force", "final_contact_width_over_L", "area_ratio", "slope_lc
 checks.absolute("largest penetration (um)", s["max_penetration"], 0, 1e-8)
 checks.require(f"slope of l_c/L against d/H {s['slope_lc_vs_d']:.4f} in (0.7, 1)",
                0.7 < s["slope_lc_vs_d"] < 1.0)
+
+stl = sorted((out / "surface").glob("step_*.stl"))[-1].read_bytes()
+count = int(np.frombuffer(stl[80:84], "<u4")[0])
+records = np.frombuffer(stl[84:], np.dtype([("normal", "<f4", 3), ("vertices", "<f4", (3, 3)),
+                                            ("attributes", "<u2")]))
+vertices = records["vertices"].astype(float)
+normals = np.cross(vertices[:, 1] - vertices[:, 0], vertices[:, 2] - vertices[:, 0])
+p = s["parameters"]
+substrate = p["t"] + p["L"] / math.sqrt(2) * (1 - s["final_d_over_H"])
+checks.require(f"STL holds {count} triangles", count == len(records) and count > 0)
+checks.relative("STL: highest point against the substrate z = t + H - d", vertices[:, :, 2].max(),
+                substrate, 1e-6)
+checks.require(f"STL: triangles facing down: {(normals[:, 2] <= 0).sum()}",
+               (normals[:, 2] > 0).all())
 checks.finish()

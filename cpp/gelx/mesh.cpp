@@ -10,6 +10,8 @@
 #include <dolfinx/mesh/generation.h>
 #include <dolfinx/mesh/utils.h>
 #include <dolfinx/mesh/cell_types.h>
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <gmsh.h>
@@ -127,6 +129,57 @@ GmshData mesh_with_gmsh(std::vector<std::string> args, const std::function<void(
       data.cells, {data.cells.size() / nv, static_cast<std::size_t>(nv)}, perm);
   return data;
 }
+/// Add the mirror image of the mesh in the plane x_axis = 0 and merge the two along it: the
+/// nodes on the plane are shared, the facets on it become interior and lose their tags.
+void mirror(GmshData& data, int axis)
+{
+  const std::size_t num_nodes = data.x.size() / 3;
+  double extent = 0;
+  for (double v : data.x)
+    extent = std::max(extent, std::abs(v));
+  const double tol = 1e-10 * extent;
+  std::vector<std::int64_t> image(num_nodes);
+  for (std::size_t i = 0; i < num_nodes; ++i)
+  {
+    if (std::abs(data.x[3 * i + axis]) <= tol)
+    {
+      image[i] = static_cast<std::int64_t>(i);
+      continue;
+    }
+    image[i] = static_cast<std::int64_t>(data.x.size() / 3);
+    for (int k = 0; k < 3; ++k)
+      data.x.push_back(k == axis ? -data.x[3 * i + k] : data.x[3 * i + k]);
+  }
+  const std::size_t num_cell_nodes = data.cells.size();
+  for (std::size_t i = 0; i < num_cell_nodes; ++i)
+    data.cells.push_back(image[data.cells[i]]);
+  const std::size_t num_cells = data.cell_values.size();
+  for (std::size_t c = 0; c < num_cells; ++c)
+    data.cell_values.push_back(data.cell_values[c]);
+
+  const std::size_t facet_nv
+      = data.facets.size() / std::max<std::size_t>(data.facet_values.size(), 1);
+  std::vector<std::int64_t> facets;
+  std::vector<std::int32_t> values, mirrored_values;
+  std::vector<std::int64_t> mirrored;
+  for (std::size_t f = 0; f < data.facet_values.size(); ++f)
+  {
+    const auto first = data.facets.begin() + f * facet_nv;
+    const bool on_plane = std::all_of(first, first + facet_nv, [&](std::int64_t n)
+                                      { return image[n] == n; });
+    if (on_plane)
+      continue;
+    facets.insert(facets.end(), first, first + facet_nv);
+    values.push_back(data.facet_values[f]);
+    for (auto n = first; n != first + facet_nv; ++n)
+      mirrored.push_back(image[*n]);
+    mirrored_values.push_back(data.facet_values[f]);
+  }
+  facets.insert(facets.end(), mirrored.begin(), mirrored.end());
+  values.insert(values.end(), mirrored_values.begin(), mirrored_values.end());
+  data.facets = std::move(facets);
+  data.facet_values = std::move(values);
+}
 } // namespace
 
 int TaggedMesh::tag(const std::string& name) const
@@ -149,12 +202,17 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
 }
 
 TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
-                           const std::vector<std::string>& gmsh_args)
+                           const std::vector<std::string>& gmsh_args,
+                           const std::vector<int>& mirror_axes)
 {
   const int rank = dolfinx::MPI::rank(comm);
   GmshData data;
   if (rank == 0)
+  {
     data = mesh_with_gmsh(gmsh_args, build);
+    for (int axis : mirror_axes)
+      mirror(data, axis);
+  }
 
   // Rank 0 tells the others the cell type and the group names
   int type_code = data.cell_type_code;

@@ -43,9 +43,13 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
 /// as its command line, on rank 0 only) and distribute it over `comm`, as read_geo does. For
 /// geometries a .geo file cannot express in reasonable length; `build` must add the physical
 /// groups and may set transfinite meshing, and it is called on rank 0 only, so it must not
-/// communicate. Collective.
+/// communicate. `mirror_axes`: reflect the mesh in the plane x_k = 0 for each k in turn and
+/// merge it with its image (the facets on the plane become interior and lose their tags): the
+/// larger domain of a symmetry-reduced model, to show that the reduction does not change the
+/// answer. Collective.
 TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
-                           const std::vector<std::string>& gmsh_args = {});
+                           const std::vector<std::string>& gmsh_args = {},
+                           const std::vector<int>& mirror_axes = {});
 
 /// Box [0, L0] x [0, L1] x [0, L2] with n cells along each edge (tetrahedra: six a box cell)
 /// and its faces tagged x_min = 1, x_max = 2, y_min = 3, y_max = 4, z_min = 5, z_max = 6

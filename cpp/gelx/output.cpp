@@ -7,7 +7,9 @@
 #include <dolfinx/fem/FunctionSpace.h>
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/io/XDMFFile.h>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <numeric>
 #include <xtensor/xtensor.hpp>
@@ -192,6 +194,122 @@ void ResultsWriter::write_summary(const nlohmann::json& summary)
     out << summary.dump(2) << "\n";
   }
   std::filesystem::rename(tmp, _folder / "summary.json");
+}
+
+void ResultsWriter::write_stl(const std::string& file_name,
+                              const std::vector<Triangle>& triangles)
+{
+  if (!_root)
+    return;
+  const auto path = _folder / file_name;
+  std::filesystem::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary);
+  std::array<char, 80> header{};
+  const std::string title = "gelx deformed surface";
+  std::copy(title.begin(), title.end(), header.begin());
+  out.write(header.data(), header.size());
+  const auto count = static_cast<std::uint32_t>(triangles.size());
+  out.write(reinterpret_cast<const char*>(&count), sizeof(count));
+  for (const auto& t : triangles)
+  {
+    std::array<float, 12> record{}; // normal (left zero: readers use the vertex order), vertices
+    for (int v = 0; v < 3; ++v)
+      for (int k = 0; k < 3; ++k)
+        record[3 + 3 * v + k] = static_cast<float>(t[v][k]);
+    out.write(reinterpret_cast<const char*>(record.data()), sizeof(record));
+    const std::uint16_t attributes = 0;
+    out.write(reinterpret_cast<const char*>(&attributes), sizeof(attributes));
+  }
+}
+
+std::vector<Triangle> deformed_surface(const dolfinx::fem::Function<double>& u_p1,
+                                       const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags,
+                                       int tag)
+{
+  const auto& mesh = *u_p1.function_space()->mesh();
+  const int tdim = mesh.topology().dim();
+  auto& topology = const_cast<dolfinx::mesh::Topology&>(mesh.topology());
+  topology.create_connectivity(tdim - 1, tdim);
+  topology.create_connectivity(tdim, tdim - 1);
+  const auto f_to_c = topology.connectivity(tdim - 1, tdim);
+  const auto c_to_f = topology.connectivity(tdim, tdim - 1);
+  const auto facet_vertices = dolfinx::mesh::get_entity_vertices(topology.cell_type(), tdim - 1);
+  const std::int32_t owned_facets = topology.index_map(tdim - 1)->size_local();
+  const auto& x_dofmap = mesh.geometry().dofmap();
+  const auto X = mesh.geometry().x();
+  const auto& dofmap = *u_p1.function_space()->dofmap();
+  const auto& u = u_p1.x()->array();
+
+  std::vector<double> local; // 9 coordinates per triangle
+  for (std::size_t i = 0; i < facet_tags.indices().size(); ++i)
+  {
+    const std::int32_t facet = facet_tags.indices()[i];
+    if (facet_tags.values()[i] != tag || facet >= owned_facets)
+      continue;
+    const std::int32_t cell = f_to_c->links(facet)[0];
+    const auto cell_facets = c_to_f->links(cell);
+    const int local_facet = std::distance(
+        cell_facets.begin(), std::find(cell_facets.begin(), cell_facets.end(), facet));
+    // Current positions of the cell's vertices (the geometry and the P1 dofs follow the
+    // reference cell's vertex order)
+    const auto nodes = x_dofmap.links(cell);
+    const auto dofs = dofmap.cell_dofs(cell);
+    auto position = [&](int v)
+    {
+      std::array<double, 3> x;
+      for (int k = 0; k < 3; ++k)
+        x[k] = X[3 * nodes[v] + k] + u[3 * dofs[v] + k];
+      return x;
+    };
+    std::array<double, 3> cell_centre{};
+    for (std::size_t v = 0; v < dofs.size(); ++v)
+      for (int k = 0; k < 3; ++k)
+        cell_centre[k] += position(v)[k] / dofs.size();
+    const auto fv = facet_vertices.links(local_facet);
+    // A quadrilateral's vertices are in tensor-product order: 0 1 3 2 around it
+    const std::vector<std::array<int, 3>> splits
+        = fv.size() == 4 ? std::vector<std::array<int, 3>>{{0, 1, 3}, {0, 3, 2}}
+                         : std::vector<std::array<int, 3>>{{0, 1, 2}};
+    for (const auto& split : splits)
+    {
+      Triangle t;
+      for (int v = 0; v < 3; ++v)
+        t[v] = position(fv[split[v]]);
+      // Outward: the normal points away from the cell's centre
+      std::array<double, 3> a, b, n;
+      for (int k = 0; k < 3; ++k)
+      {
+        a[k] = t[1][k] - t[0][k];
+        b[k] = t[2][k] - t[0][k];
+      }
+      n = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+      double outward = 0;
+      for (int k = 0; k < 3; ++k)
+        outward += n[k] * (t[0][k] - cell_centre[k]);
+      if (outward < 0)
+        std::swap(t[1], t[2]);
+      for (const auto& vertex : t)
+        local.insert(local.end(), vertex.begin(), vertex.end());
+    }
+  }
+
+  // Gather on rank 0
+  MPI_Comm comm = mesh.comm();
+  const int size = dolfinx::MPI::size(comm);
+  int n = static_cast<int>(local.size());
+  std::vector<int> counts(size), offsets(size + 1, 0);
+  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+  for (int r = 0; r < size; ++r)
+    offsets[r + 1] = offsets[r] + counts[r];
+  std::vector<double> all(dolfinx::MPI::rank(comm) == 0 ? offsets.back() : 0);
+  MPI_Gatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE,
+              0, comm);
+  std::vector<Triangle> triangles(all.size() / 9);
+  for (std::size_t i = 0; i < triangles.size(); ++i)
+    for (int v = 0; v < 3; ++v)
+      for (int k = 0; k < 3; ++k)
+        triangles[i][v][k] = all[9 * i + 3 * v + k];
+  return triangles;
 }
 
 nlohmann::json software_versions()

@@ -8,6 +8,8 @@
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/mesh/Mesh.h>
+#include <array>
+#include <dolfinx/mesh/MeshTags.h>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -53,6 +55,17 @@ private:
   std::shared_ptr<dolfinx::fem::Function<double>> _f;
 };
 
+/// A triangle of a surface, its vertices counter-clockwise seen from outside.
+using Triangle = std::array<std::array<double, 3>, 3>;
+
+/// The deformed surface of the facets tagged `tag` (x = X + u at the vertices), gathered on
+/// rank 0 (other ranks get none): for optics or CAD codes that read STL. `u_p1` is a vertex
+/// displacement (NodalField::function()); quadrilateral facets are split in two triangles.
+/// Collective.
+std::vector<Triangle> deformed_surface(const dolfinx::fem::Function<double>& u_p1,
+                                       const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags,
+                                       int tag);
+
 /// Writes one run's results into one folder.
 class ResultsWriter
 {
@@ -70,6 +83,9 @@ public:
 
   /// Write a whole table (columns from the first row's keys) to folder/file_name.
   void write_table(const std::string& file_name, const std::vector<nlohmann::json>& rows);
+
+  /// Write triangles (of deformed_surface, on rank 0) as binary STL to folder/file_name.
+  void write_stl(const std::string& file_name, const std::vector<Triangle>& triangles);
 
   /// Write summary.json (atomically: a reader never sees half a file).
   void write_summary(const nlohmann::json& summary);

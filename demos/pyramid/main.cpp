@@ -2,24 +2,27 @@
 //
 // Sample runs:
 //   ./gelx run pyramid
-//   ./gelx run pyramid --cells 3 --tip_levels 4
+//   ./gelx run pyramid --order 2 --cells 2
 //   ./gelx run pyramid --W 12 --t 8 --np 2
+//   ./gelx run pyramid --law le
 //
 // A pyramid of base width L and height H = L/sqrt(2) (semi-apex angle arctan(1/sqrt(2)), the
 // {111} facets of a silicon mould) stands on a base of thickness t in a square array of period
 // W; the base is bonded to a rigid backing. A rigid, frictionless substrate first touches the
 // apex and then moves toward the base by d. The elastomer is incompressible neo-Hookean
-// (Eq. 1.10; or Mooney-Rivlin, --mooney_share) in mixed u-p form on Q2-Q1 hexahedra, the
-// analogue of the thesis' hybrid bricks.
+// (Eq. 1.10; or Mooney-Rivlin or linear elastic, --law) in mixed u-p form on Q1-P0 hexahedra,
+// the thesis' hybrid bricks, or Q2-Q1 (--order 2).
 // By symmetry one quarter of the unit cell is modelled (pyramid_mesh.h: a structured hexahedral
 // tip graded toward the apex, after thesis Fig. 2.2b). The contact is an exact active set on
 // the nodes of the lateral faces (gelx::RigidPlaneContact). Per step we record the force f,
 // the contact width l_c (the patch's extent along a base edge) and area A_c; the thesis finds
-// l_c/L = 0.86 d/H (Fig. 2.3b) and l_c ∝ f^(1/2) (Fig. 2.4a).
+// l_c/L = 0.86 d/H (Fig. 2.3b) and l_c ∝ f^(1/2) (Fig. 2.4a). The deformed lateral faces are
+// written as STL per step (surface/), for optics codes.
 
 #include "pyramid.h"
 
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <gelx/load_stepping.h>
 #include <gelx/output.h>
@@ -67,10 +70,21 @@ int main(int argc, char* argv[])
           [](int v) { return v >= 0 ? "" : "must not be negative"; });
   prm.add("mesh", "growth", g0.growth, "cell size ratio in the base, away from the pyramid",
           [](double v) { return v >= 1 ? "" : "must be at least 1"; });
-  prm.add("material", "G", 1.0, "shear modulus (MPa)", gelx::Parameters::positive);
-  prm.add("material", "mooney_share", 0.0,
-          "C01 / (C10 + C01): 0 neo-Hookean, > 0 Mooney-Rivlin with C10 + C01 = G/2",
+  const gelx::scenes::PyramidMaterial m0;
+  prm.add("material", "law", m0.law.c_str(),
+          "nh neo-Hookean, mr Mooney-Rivlin, le small-strain linear elastic (all incompressible)",
+          [](const std::string& v)
+          { return v == "nh" || v == "mr" || v == "le" ? "" : "must be nh, mr or le"; });
+  prm.add("material", "G", m0.G, "initial shear modulus (MPa)", gelx::Parameters::positive);
+  prm.add("material", "mooney_share", m0.mooney_share,
+          "Mooney-Rivlin C01 / (C10 + C01), with C10 + C01 = G/2 (law mr)",
           [](double v) { return v >= 0 && v < 1 ? "" : "must be in [0, 1)"; });
+  prm.add("mesh", "domain", "quarter",
+          "quarter: the quarter cell with mirror planes x = 0, y = 0; half: the half x >= 0",
+          [](const std::string& v)
+          { return v == "quarter" || v == "half" ? "" : "must be quarter or half"; });
+  prm.add("mesh", "order", m0.order, "displacement degree: 2 (Q2-Q1) or 1 (Q1-P0)",
+          [](int v) { return v == 1 || v == 2 ? "" : "must be 1 or 2"; });
   prm.add("loading", "d_max", 0.8, "final indentation d/H",
           [](double v) { return v > 0 && v < 1 ? "" : "must be in (0, 1)"; });
   // Steps of 0.0125 H growing to 0.025 H (at d_max = 0.8): the patch gains a ring of nodes in
@@ -94,12 +108,18 @@ int main(int argc, char* argv[])
     g.cells = prm.integer("cells");
     g.tip_levels = prm.integer("tip_levels");
     g.growth = prm.real("growth");
+    g.half_cell = prm.text("domain") == "half";
     if (g.W <= g.L)
       throw gelx::InputError("the array period W must exceed the pyramid width L");
-    const double G = prm.real("G"), d_max = prm.real("d_max");
+    gelx::scenes::PyramidMaterial material;
+    material.law = prm.text("law");
+    material.G = prm.real("G");
+    material.mooney_share = prm.real("mooney_share");
+    material.order = prm.integer("order");
+    const double d_max = prm.real("d_max");
 
     // 2. The quarter cell: mesh, material, symmetry, contact
-    gelx::scenes::PressedPyramid pyramid(comm, g, G, prm.real("mooney_share"));
+    gelx::scenes::PressedPyramid pyramid(comm, g, material);
     const double H = pyramid.height();
 
     // 3. Press: the substrate moves by d = s d_max H as the load factor s goes from 0 to 1
@@ -128,6 +148,9 @@ int main(int argc, char* argv[])
                 auto fields = stress.functions();
                 fields.push_back(displacement.function());
                 writer.write_fields(d, fields);
+                char stl[32];
+                std::snprintf(stl, sizeof(stl), "surface/step_%03d.stl", step.step);
+                writer.write_stl(stl, pyramid.contact_side_surface(*displacement.function()));
                 writer.append_step({{"step", step.step},
                                     {"d_over_H", d},
                                     {"force", last.force},
@@ -147,14 +170,15 @@ int main(int argc, char* argv[])
       status = std::string("failed: ") + e.what(); // completed steps stay in the results
     }
 
-    // 4. The patch at the last step (x, y, nodal contact force), for the pressure map
+    // 4. The patch at the last step (x, y, nodal contact force, in contact), for the pressure
+    //    map
     const auto patch = pyramid.patch(); // collective; the nodes are on rank 0
     if (dolfinx::MPI::rank(comm) == 0)
     {
       std::ofstream out(writer.folder() / "patch.csv");
-      out << "x,y,force\n";
-      for (const auto& [x, y, f] : patch)
-        out << x << "," << y << "," << f << "\n";
+      out << "x,y,force,in_contact\n";
+      for (const auto& [x, y, f, in_contact] : patch)
+        out << x << "," << y << "," << f << "," << in_contact << "\n";
     }
     std::vector<double> patch_d, patch_w, patch_f;
     for (std::size_t i = 0; i < d_tilde.size(); ++i)

@@ -10,6 +10,7 @@ import sys
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.tri as tri  # noqa: E402
 import numpy as np  # noqa: E402
 
 out = pathlib.Path(sys.argv[1])
@@ -44,15 +45,31 @@ fig.tight_layout()
 fig.savefig(out / "pyramid.png", dpi=120)
 
 patch = np.loadtxt(out / "patch.csv", delimiter=",", skiprows=1, ndmin=2)
-if len(patch):
-    fig, ax = plt.subplots(figsize=(5, 4.5))
-    sc = ax.scatter(patch[:, 0], patch[:, 1], c=patch[:, 2], s=12, cmap="viridis")
-    fig.colorbar(sc, label="nodal contact force (uN)")
+if len(patch) >= 3:
+    # Contact pressure: each node's force over its tributary area, a third of the area of the
+    # triangles around it in a triangulation of the candidate nodes (current x, y); the patch's
+    # edge is the half level of the in-contact indicator between contact and free nodes
+    x, y, force, in_contact = patch.T
+    triangulation = tri.Triangulation(x, y)
+    corners = np.stack([x[triangulation.triangles], y[triangulation.triangles]], axis=-1)
+    a, b, c = (corners[:, k] for k in range(3))
+    areas = 0.5 * np.abs(np.cross(b - a, c - a))
+    tributary = np.zeros(len(x))
+    for k in range(3):
+        np.add.at(tributary, triangulation.triangles[:, k], areas / 3)
+    pressure = force / tributary
+    fig, ax = plt.subplots(figsize=(5.5, 4.5))
+    shading = ax.tripcolor(triangulation, pressure, shading="gouraud", cmap="viridis")
+    fig.colorbar(shading, label=f"contact pressure (MPa, G = {G:g} MPa)")
+    ax.tricontour(triangulation, in_contact, levels=[0.5], colors="w", linewidths=0.8)
+    reach = 1.15 * np.abs(patch[in_contact > 0, :2]).max()
+    ax.set_xlim(-reach, reach)
+    ax.set_ylim(-reach, reach)
     ax.set_aspect("equal")
     ax.set_xlabel("x (um)")
     ax.set_ylabel("y (um)")
-    ax.set_title(f"contact patch at d/H = {s['final_d_over_H']:.2f}: "
-                 f"A_c / l_c² = {s['area_ratio']:.3f}")
+    ax.set_title(f"contact patch at d/H = {s['final_d_over_H']:.2f} (Fig. 2.7a): "
+                 f"A_c / l_c² = {s['area_ratio']:.3f}", fontsize=9)
     fig.tight_layout()
     fig.savefig(out / "patch.png", dpi=120)
 print(f"wrote {out / 'pyramid.png'} and {out / 'patch.png'}")

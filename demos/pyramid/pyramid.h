@@ -1,9 +1,9 @@
 #pragma once
 /// @file pyramid.h
 /// An elastomeric pyramid on its base pressed by a rigid substrate (thesis ch. 2): one quarter
-/// of the unit cell (pyramid_mesh.h), incompressible neo-Hookean or Mooney-Rivlin in mixed u-p
-/// form on Q2-Q1 hexahedra (forms/mixed_hex.py), frictionless contact with the plane
-/// (gelx::RigidPlaneContact).
+/// of the unit cell (pyramid_mesh.h), an incompressible law in mixed u-p form on Q2-Q1
+/// (forms/mixed_hex.py) or Q1-P0 hexahedra (forms/mixed_hex_q1.py), frictionless contact with
+/// the plane (gelx::RigidPlaneContact).
 
 #include "pyramid_mesh.h"
 
@@ -12,14 +12,16 @@
 #include <dolfinx/fem/Function.h>
 #include <gelx/boundary.h>
 #include <gelx/contact.h>
+#include <gelx/output.h>
 #include <gelx/problem.h>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace gelx::scenes
 {
 
-/// The contact at one indentation, for the whole pyramid (four quarters).
+/// The contact at one indentation, for the whole pyramid.
 struct ContactMeasures
 {
   double force = 0;        ///< compression force f (G times um^2: uN for G in MPa)
@@ -29,12 +31,22 @@ struct ContactMeasures
   double penetration = 0;  ///< largest node distance behind the substrate
 };
 
+/// The elastomer: an incompressible law of forms/_mixed.py and its element.
+struct PyramidMaterial
+{
+  /// "nh" neo-Hookean (Eq. 1.10), "mr" Mooney-Rivlin, "le" small-strain linear elasticity
+  /// (chapter 2's constitutive check)
+  std::string law = "nh";
+  double G = 1.0;            ///< initial shear modulus (MPa)
+  double mooney_share = 0.5; ///< Mooney-Rivlin C01 / (C10 + C01), with C10 + C01 = G/2
+  int order = 1;             ///< displacement degree: 1 (Q1-P0) or 2 (Q2-Q1)
+};
+
 class PressedPyramid
 {
 public:
-  /// Shear modulus G; mooney_share = C01 / (C10 + C01): 0 is neo-Hookean (Eq. 1.10), > 0 the
-  /// incompressible Mooney-Rivlin solid with C10 + C01 = G/2 (chapter 2's constitutive check).
-  PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry, double G, double mooney_share);
+  PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry,
+                 const PyramidMaterial& material);
 
   double height() const { return _H; }
   NonlinearSystem& system() { return *_contact; }
@@ -49,8 +61,14 @@ public:
   /// displacement(). Collective.
   ContactMeasures measure();
 
-  /// The contact nodes of all four quarters (x, y current, force), on rank 0 (others: empty).
-  std::vector<std::array<double, 3>> patch() const;
+  /// The candidate nodes of the whole pyramid (current x, y, contact force, 1 in contact or
+  /// 0) within twice the patch's reach of the axis, on rank 0 (others: empty): a pressure map
+  /// that shows the patch's edges between contact and free nodes. Collective.
+  std::vector<std::array<double, 4>> patch() const;
+
+  /// The deformed lateral faces of the whole pyramid (the modelled part and its images), from
+  /// the vertex displacement u_p1, on rank 0 (for STL). Collective.
+  std::vector<Triangle> contact_side_surface(const dolfinx::fem::Function<double>& u_p1) const;
 
   /// Cauchy stress expression (for gelx::CellField) and the displacement as a plain function.
   std::shared_ptr<const dolfinx::fem::Expression<double>> stress() const { return _stress; }
@@ -59,6 +77,8 @@ public:
 private:
   PyramidGeometry _g;
   double _H;
+  /// The reflections (x, y signs) that map the modelled part onto the whole pyramid
+  std::vector<std::array<double, 2>> _images;
   TaggedMesh _mesh;
   std::shared_ptr<dolfinx::fem::Function<double>> _w, _u;
   std::unique_ptr<DirichletConditions> _bcs;

@@ -276,7 +276,8 @@ TaggedMesh pyramid_mesh(MPI_Comm comm, const PyramidGeometry& g)
       gmsh::model::setPhysicalName(2, group++, name);
     }
   };
-  return mesh_gmsh_model(comm, build);
+  const std::vector<int> mirror_axes = g.half_cell ? std::vector<int>{1} : std::vector<int>{};
+  return mesh_gmsh_model(comm, build, {}, mirror_axes);
 }
 
 } // namespace gelx::scenes

@@ -10,8 +10,11 @@
 //     mu = lambda^-1/2, sigma_zz = G (lambda^2 - 1/lambda), nominal stress
 //     P = sigma_zz / lambda = G (lambda - lambda^-2), and the pressure field (mean stress)
 //     p = sigma_zz / 3 everywhere.
+//     The same on Q1-P0 hexahedra (trilinear displacement, constant pressure).
 //  2. Incompressible Mooney-Rivlin, mixed P2-P1: sigma_zz = 2 (lambda^2 - 1/lambda)
 //     (C10 + C01/lambda), p = sigma_zz / 3.
+//  2b. Incompressible small-strain linear elasticity, mixed Q2-Q1, eps = 0.01: sigma_zz = 3 G eps,
+//     lateral strain -eps/2, p = G eps.
 //  3. Compressible Mooney-Rivlin, P2: principal stresses
 //     sigma_i = J^-1 [C10 J^-2/3 (2 l_i^2 - 2 I1/3) + C01 J^-4/3 (2 l_i^2 (I1 - l_i^2) - 4 I2/3)]
 //               + K (J - 1),
@@ -21,6 +24,7 @@
 #include "common.h"
 #include "compressible.h"
 #include "mixed_hex.h"
+#include "mixed_hex_q1.h"
 #include "mixed_tet.h"
 
 #include <dolfinx/mesh/cell_types.h>
@@ -140,21 +144,29 @@ int main(int argc, char* argv[])
       ufcx_function_space* (*space)(const char*);
       ufcx_form *residual, *tangent;
       ufcx_expression *stress, *det_F;
-      bool mooney_rivlin;
+      enum Law { neo_hookean, mooney_rivlin, linear } law;
     };
     const std::vector<MixedCase> mixed_cases = {
         {"neo-Hookean P2-P1 tet", mesh::CellType::tetrahedron,
          functionspace_form_mixed_tet_residual_nh, form_mixed_tet_residual_nh,
          form_mixed_tet_tangent_nh, expression_mixed_tet_stress_nh, expression_mixed_tet_det_F,
-         false},
+         MixedCase::neo_hookean},
         {"neo-Hookean Q2-Q1 hex", mesh::CellType::hexahedron,
          functionspace_form_mixed_hex_residual_nh, form_mixed_hex_residual_nh,
          form_mixed_hex_tangent_nh, expression_mixed_hex_stress_nh, expression_mixed_hex_det_F,
-         false},
+         MixedCase::neo_hookean},
+        {"neo-Hookean Q1-P0 hex", mesh::CellType::hexahedron,
+         functionspace_form_mixed_hex_q1_residual_nh, form_mixed_hex_q1_residual_nh,
+         form_mixed_hex_q1_tangent_nh, expression_mixed_hex_q1_stress_nh,
+         expression_mixed_hex_q1_det_F, MixedCase::neo_hookean},
+        {"linear incompressible Q2-Q1 hex", mesh::CellType::hexahedron,
+         functionspace_form_mixed_hex_residual_le, form_mixed_hex_residual_le,
+         form_mixed_hex_tangent_le, expression_mixed_hex_stress_le, expression_mixed_hex_det_F,
+         MixedCase::linear},
         {"Mooney-Rivlin P2-P1 tet", mesh::CellType::tetrahedron,
          functionspace_form_mixed_tet_residual_mr, form_mixed_tet_residual_mr,
          form_mixed_tet_tangent_mr, expression_mixed_tet_stress_mr, expression_mixed_tet_det_F,
-         true},
+         MixedCase::mooney_rivlin},
     };
     for (const auto& c : mixed_cases)
     {
@@ -168,15 +180,23 @@ int main(int argc, char* argv[])
       auto forms = make_forms(c.residual, c.tangent, W, coefficients, constants);
       auto stress = make_expression(c.stress, coefficients, constants, box.mesh);
       auto det_F = make_expression(c.det_F, coefficients, constants, box.mesh);
+      if (c.law == MixedCase::linear)
+      {
+        // Small strain: the reaction is sigma_zz times the reference area
+        const double eps = 0.01;
+        Measured m = stretch(box, w, W->sub({0}), forms, stress, det_F, 1 + eps, true);
+        check(checks, c.name + ", eps = 0.01: ", m, 3 * G * eps, 1 - eps / 2, 3 * G * eps, tol);
+        continue;
+      }
       for (double lambda : {1.5, 0.7})
       {
         Measured m = stretch(box, w, W->sub({0}), forms, stress, det_F, lambda, true);
-        const double sigma_zz = c.mooney_rivlin
+        const double sigma_zz = c.law == MixedCase::mooney_rivlin
                                     ? 2 * (lambda * lambda - 1 / lambda) * (C10 + C01 / lambda)
                                     : G * (lambda * lambda - 1 / lambda);
         check(checks, c.name + ", lambda = " + std::to_string(lambda) + ": ", m, sigma_zz,
               1 / std::sqrt(lambda), sigma_zz / lambda, tol);
-        if (!c.mooney_rivlin)
+        if (c.law == MixedCase::neo_hookean)
           checks.relative(c.name + ": nominal stress against G (lambda - lambda^-2)", m.nominal,
                           G * (lambda - 1 / (lambda * lambda)), tol);
       }

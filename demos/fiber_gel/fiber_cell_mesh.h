@@ -1,0 +1,43 @@
+#pragma once
+/// @file fiber_cell_mesh.h
+/// The unit cell of a periodic array of rigid fibers in a gel (thesis Fig. 4.4): a box
+/// D x D x L with one fiber of diameter d and length l along z, centred at the origin, cut out
+/// of it. The fiber is a capsule (a cylinder with hemispherical caps, l counting the caps) when
+/// l < L and a straight rod through the cell when l = L.
+
+#include <gelx/mesh.h>
+#include <mpi.h>
+
+namespace gelx::scenes
+{
+
+/// Lengths in nm; the mesh is refined toward the fiber.
+struct FiberCellGeometry
+{
+  double d = 10;  ///< fiber diameter
+  double l = 30;  ///< fiber length, caps included (d <= l <= L)
+  double L = 30;  ///< cell length along the fiber
+  double D = 50;  ///< cell width across the fiber (D > d)
+  /// false: 1/8 of the cell, [0, D/2]^2 x [0, L/2], bounded by the three mirror planes through
+  /// the fiber's centre; true: the whole cell [-D/2, D/2]^2 x [-L/2, L/2], meshed as the 1/8
+  /// cell and its mirror images (so opposite faces match node for node)
+  bool full = false;
+  double h_fiber = 2;   ///< mesh size on the fiber surface
+  double h_far = 10;    ///< mesh size from `grading` away from the fiber on
+  double grading = 10;  ///< distance over which the size grows from h_fiber to h_far
+  /// The fiber is a straight rod through the cell (l = L, to within rounding).
+  bool rod() const { return l >= L * (1 - 1e-12); }
+  /// Throws gelx::InputError naming the first inconsistency (D <= d, l outside [d, L], a whole
+  /// cell with a rod, whose clamped ends would be periodic slaves); the sizes are checked
+  /// positive as parameters.
+  void check() const;
+};
+
+/// Mesh the cell with gmsh (OpenCASCADE: box minus fiber) in linear tetrahedra. Facet tags:
+/// "fiber" (the fiber surface) and "x_min", "x_max", "y_min", "y_max", "z_min", "z_max" (the
+/// cell faces; for the 1/8 cell the *_min faces are the mirror planes); cell tag "gel". Uses
+/// mesh_gmsh_model's mirror_axes for the whole cell.
+/// Calls g.check(). Collective.
+TaggedMesh fiber_cell_mesh(MPI_Comm comm, const FiberCellGeometry& g);
+
+} // namespace gelx::scenes

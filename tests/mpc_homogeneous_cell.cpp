@@ -497,18 +497,11 @@ void measure_cost(MPI_Comm comm)
 
 int main(int argc, char* argv[])
 {
-  PetscInitialize(&argc, &argv, nullptr, nullptr);
-  int status;
+  return gelx::test::run_checks(argc, argv, [](MPI_Comm comm, gelx::test::Checks& checks)
   {
-    MPI_Comm comm = PETSC_COMM_WORLD;
-    gelx::test::Checks checks(comm);
-    gelx::set_default_option("newton_", "monitor", "0");
     for (Element element : {Element::p1, Element::p2, Element::p2_p1})
       check_cell(checks, comm, element);
     check_bad_input(checks, comm);
     measure_cost(comm);
-    status = checks.finish();
-  }
-  PetscFinalize();
-  return status;
+  });
 }

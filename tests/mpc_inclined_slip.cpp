@@ -224,17 +224,10 @@ void check(gelx::test::Checks& checks, MPI_Comm comm, Element element, const std
 
 int main(int argc, char* argv[])
 {
-  PetscInitialize(&argc, &argv, nullptr, nullptr);
-  int status;
+  return gelx::test::run_checks(argc, argv, [](MPI_Comm comm, gelx::test::Checks& checks)
   {
-    MPI_Comm comm = PETSC_COMM_WORLD;
-    gelx::test::Checks checks(comm);
-    gelx::set_default_option("newton_", "monitor", "0");
     check(checks, comm, Element::p1, "P1");
     check(checks, comm, Element::p2, "P2");
     check(checks, comm, Element::p2_p1, "P2-P1");
-    status = checks.finish();
-  }
-  PetscFinalize();
-  return status;
+  });
 }

@@ -225,17 +225,10 @@ void finite_strain(gelx::test::Checks& checks, MPI_Comm comm)
 
 int main(int argc, char* argv[])
 {
-  PetscInitialize(&argc, &argv, nullptr, nullptr);
-  int status;
+  return gelx::test::run_checks(argc, argv, [](MPI_Comm comm, gelx::test::Checks& checks)
   {
-    MPI_Comm comm = PETSC_COMM_WORLD;
-    gelx::test::Checks checks(comm);
-    gelx::set_default_option("newton_", "monitor", "0");
     small_strain(checks, comm, Law::linear);
     small_strain(checks, comm, Law::neo_hookean);
     finite_strain(checks, comm);
-    status = checks.finish();
-  }
-  PetscFinalize();
-  return status;
+  });
 }

@@ -5,6 +5,8 @@
 #include <dolfinx/common/MPI.h>
 #include <dolfinx/common/log.h>
 #include <gelx/mesh.h>
+#include <gelx/petsc_utils.h>
+#include <petscsys.h>
 
 namespace gelx::test
 {
@@ -57,6 +59,21 @@ int Checks::finish() const
   if (_root)
     std::printf("%d passed, %d failed\n", _passed, _failed);
   return _failed > 0 ? 1 : 0;
+}
+
+int run_checks(int argc, char* argv[],
+               const std::function<void(MPI_Comm, Checks&)>& checks_of)
+{
+  PetscInitialize(&argc, &argv, nullptr, nullptr);
+  int status;
+  {
+    Checks checks(PETSC_COMM_WORLD);
+    gelx::set_default_option("newton_", "monitor", "0");
+    checks_of(PETSC_COMM_WORLD, checks);
+    status = checks.finish();
+  }
+  PetscFinalize();
+  return status;
 }
 
 } // namespace gelx::test

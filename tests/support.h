@@ -8,6 +8,7 @@
 #include <dolfinx/mesh/Mesh.h>
 #include <dolfinx/mesh/cell_types.h>
 #include <dolfinx/mesh/MeshTags.h>
+#include <functional>
 #include <gelx/boundary.h>
 #include <memory>
 #include <mpi.h>
@@ -60,5 +61,10 @@ private:
   bool _root;
   int _passed = 0, _failed = 0;
 };
+
+/// The body of a verification program: initialise PETSc, run `checks_of(comm, checks)` with
+/// the Newton monitor off by default, print the tally, finalise; returns the exit code.
+int run_checks(int argc, char* argv[],
+               const std::function<void(MPI_Comm, Checks&)>& checks_of);
 
 } // namespace gelx::test

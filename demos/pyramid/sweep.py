@@ -3,7 +3,9 @@ checks of §2.3): runs the scene over the array period W, the base thickness t, 
 L (W and t scaled with it) and the law, and plots l_c/L against d/H and against f^(1/2).
 
 usage: sweep.py BUILD_DIR OUTPUT_DIR [scene options, e.g. --order 2 --cells 2]
-Results: OUTPUT_DIR/<study>.png, OUTPUT_DIR/sweep.csv and one scene folder per run.
+Results: OUTPUT_DIR/<study>.png, OUTPUT_DIR/sweep.csv and one scene folder per case (named
+after its parameters; a folder that holds a completed run is reused, so an interrupted sweep
+resumes where it stopped).
 """
 import csv
 import json
@@ -23,6 +25,8 @@ exe = build / "demos" / "pyramid" / "gelx-pyramid"
 env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1")
 L = 8.0  # um, the thesis' pyramid
+# The reference case (the scene's defaults, spelled out so that equal cases are run once)
+REFERENCE = {"L": L, "W": 8 * L, "t": 4 * L, "law": "nh"}
 # study: (figure title, [(label, scene parameters)])
 STUDIES = {
     "fig2_5a_period": ("array period W (t = 4L)",
@@ -38,10 +42,16 @@ STUDIES = {
 
 
 def run(study, label, parameters):
-    folder = out / f"{study}_{len(list(out.glob(study + '_*')))}"
-    args = [a for k, v in parameters.items() for a in (f"--{k}", str(v))]
-    subprocess.run(["mpirun", "-np", "2", str(exe), "--output", str(folder), "-newton_monitor",
-                    "0", *scene_options, *args], check=True, stdout=subprocess.DEVNULL, env=env)
+    parameters = {**REFERENCE, **parameters}
+    folder = out / "_".join(f"{k}_{v}" if isinstance(v, str) else f"{k}{v:g}"
+                            for k, v in sorted(parameters.items()))
+    summary_file = folder / "summary.json"
+    if not (summary_file.exists()
+            and json.loads(summary_file.read_text())["status"] == "completed"):
+        args = [a for k, v in parameters.items() for a in (f"--{k}", str(v))]
+        subprocess.run(["mpirun", "-np", "2", str(exe), "--output", str(folder),
+                        "-newton_monitor", "0", "--extrapolate", "false", *scene_options,
+                        *args], check=True, stdout=subprocess.DEVNULL, env=env)
     summary = json.loads((folder / "summary.json").read_text())
     rows = list(csv.DictReader(open(folder / "steps.csv")))
     return {"study": study, "label": label, "folder": folder.name,

@@ -23,8 +23,10 @@ G = s["parameters"]["G"]
 
 fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
 left.plot(d, lc, "o", ms=4, label="gelx")
+limit = s.get("slope_lc_vs_d_extrapolated")
+limit_text = (f" (mesh limit {limit:.3f})" if limit is not None and np.isfinite(limit) else "")
 left.plot(d, s["slope_lc_vs_d"] * d + s["intercept_lc_vs_d"], "k-",
-          label=f"fit: slope {s['slope_lc_vs_d']:.3f}, R² {s['r2_lc_vs_d']:.4f}")
+          label=f"fit: slope {s['slope_lc_vs_d']:.3f}{limit_text}, R² {s['r2_lc_vs_d']:.4f}")
 left.plot(d, 0.86 * d, "r--", label="thesis fit, slope 0.86")
 left.plot(d, d, ":", color="gray", label="truncated pyramid, slope 1")
 left.set_xlabel("d / H")
@@ -57,7 +59,8 @@ if len(patch) >= 3:
     tributary = np.zeros(len(x))
     for k in range(3):
         np.add.at(tributary, triangulation.triangles[:, k], areas / 3)
-    pressure = force / tributary
+    # (a node that no triangle keeps, e.g. one projected onto another, carries no pressure)
+    pressure = np.divide(force, tributary, out=np.zeros_like(force), where=tributary > 0)
     fig, ax = plt.subplots(figsize=(5.5, 4.5))
     shading = ax.tripcolor(triangulation, pressure, shading="gouraud", cmap="viridis")
     fig.colorbar(shading, label=f"contact pressure (MPa, G = {G:g} MPa)")

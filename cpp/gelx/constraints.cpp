@@ -1,4 +1,5 @@
 #include "constraints.h"
+#include "collectives.h"
 #include "petsc_utils.h"
 
 #include <algorithm>
@@ -18,21 +19,6 @@ namespace gelx
 
 namespace
 {
-/// Concatenation of every rank's `local`, in rank order, on every rank.
-template <typename T>
-std::vector<T> all_gather(MPI_Comm comm, const std::vector<T>& local)
-{
-  const int size = dolfinx::MPI::size(comm);
-  std::vector<int> counts(size), offsets(size + 1, 0);
-  const int n = local.size();
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-  std::partial_sum(counts.begin(), counts.end(), offsets.begin() + 1);
-  std::vector<T> all(offsets.back());
-  MPI_Allgatherv(local.data(), n, dolfinx::MPI::mpi_type<T>(), all.data(), counts.data(),
-                 offsets.data(), dolfinx::MPI::mpi_type<T>(), comm);
-  return all;
-}
-
 /// Throw, on every rank, the error of the lowest rank that has one (an empty string: none).
 /// Builders detect bad input locally after their collective calls; this keeps every rank in
 /// step instead of leaving the others waiting in the next collective.

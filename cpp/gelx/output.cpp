@@ -1,4 +1,5 @@
 #include "output.h"
+#include "collectives.h"
 #include "parameters.h"
 
 #include <basix/finite-element.h>
@@ -157,6 +158,18 @@ std::vector<std::string> keys(const nlohmann::json& row)
     k.push_back(it.key());
   return k;
 }
+
+/// Versions of the libraries a run used, for summary.json.
+nlohmann::json software_versions()
+{
+  nlohmann::json v;
+  v["gelx"] = "0.1";
+  v["dolfinx"] = DOLFINX_VERSION_STRING;
+  v["petsc"] = std::to_string(PETSC_VERSION_MAJOR) + "." + std::to_string(PETSC_VERSION_MINOR)
+               + "." + std::to_string(PETSC_VERSION_SUBMINOR);
+  v["gmsh"] = GMSH_API_VERSION;
+  return v;
+}
 } // namespace
 
 void ResultsWriter::append_step(const nlohmann::json& row)
@@ -184,14 +197,20 @@ void ResultsWriter::write_table(const std::string& file_name,
     write_csv_row(out, columns, row);
 }
 
-void ResultsWriter::write_summary(const nlohmann::json& summary)
+void ResultsWriter::write_summary(const std::string& scene, const std::string& status,
+                                  const Parameters& parameters, nlohmann::json quantities)
 {
+  quantities.update({{"scene", scene},
+                     {"status", status},
+                     {"parameters", parameters.to_json()},
+                     {"versions", software_versions()},
+                     {"mpi_ranks", dolfinx::MPI::size(_comm)}});
   if (!_root)
     return;
   const auto tmp = _folder / "summary.json.tmp";
   {
     std::ofstream out(tmp);
-    out << summary.dump(2) << "\n";
+    out << quantities.dump(2) << "\n";
   }
   std::filesystem::rename(tmp, _folder / "summary.json");
 }
@@ -293,34 +312,16 @@ std::vector<Triangle> deformed_surface(const dolfinx::fem::Function<double>& u_p
     }
   }
 
-  // Gather on rank 0
-  MPI_Comm comm = mesh.comm();
-  const int size = dolfinx::MPI::size(comm);
-  int n = static_cast<int>(local.size());
-  std::vector<int> counts(size), offsets(size + 1, 0);
-  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
-  for (int r = 0; r < size; ++r)
-    offsets[r + 1] = offsets[r] + counts[r];
-  std::vector<double> all(dolfinx::MPI::rank(comm) == 0 ? offsets.back() : 0);
-  MPI_Gatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE,
-              0, comm);
+  // On rank 0 only: every rank's triangles
+  std::vector<double> all = all_gather(mesh.comm(), local);
+  if (dolfinx::MPI::rank(mesh.comm()) != 0)
+    all.clear();
   std::vector<Triangle> triangles(all.size() / 9);
   for (std::size_t i = 0; i < triangles.size(); ++i)
     for (int v = 0; v < 3; ++v)
       for (int k = 0; k < 3; ++k)
         triangles[i][v][k] = all[9 * i + 3 * v + k];
   return triangles;
-}
-
-nlohmann::json software_versions()
-{
-  nlohmann::json v;
-  v["gelx"] = "0.1";
-  v["dolfinx"] = DOLFINX_VERSION_STRING;
-  v["petsc"] = std::to_string(PETSC_VERSION_MAJOR) + "." + std::to_string(PETSC_VERSION_MINOR)
-               + "." + std::to_string(PETSC_VERSION_SUBMINOR);
-  v["gmsh"] = GMSH_API_VERSION;
-  return v;
 }
 
 } // namespace gelx

@@ -18,6 +18,7 @@
 
 namespace gelx
 {
+class Parameters;
 
 /// Cell-wise (DG0) output of a UFL Expression evaluated at the cell midpoints.
 ///
@@ -87,8 +88,11 @@ public:
   /// Write triangles (of deformed_surface, on rank 0) as binary STL to folder/file_name.
   void write_stl(const std::string& file_name, const std::vector<Triangle>& triangles);
 
-  /// Write summary.json (atomically: a reader never sees half a file).
-  void write_summary(const nlohmann::json& summary);
+  /// Write summary.json (atomically: a reader never sees half a file): the run's record —
+  /// scene, status ("completed" or "failed: why"), parameters, library versions, MPI ranks —
+  /// and the scene's `quantities`.
+  void write_summary(const std::string& scene, const std::string& status,
+                     const Parameters& parameters, nlohmann::json quantities);
 
   const std::filesystem::path& folder() const { return _folder; }
 
@@ -99,7 +103,5 @@ private:
   bool _root;
 };
 
-/// Versions of the libraries a run used, for summary.json.
-nlohmann::json software_versions();
 
 } // namespace gelx

@@ -149,12 +149,8 @@ int main(int argc, char* argv[])
     {
       const auto dofs = V->dofmap()->index_map;
       writer.write_summary(
-          {{"scene", "block"},
-           {"status", status},
-           {"parameters", prm.to_json()},
-           {"versions", gelx::software_versions()},
-           {"mpi_ranks", dolfinx::MPI::size(comm)},
-           {"num_dofs", dofs->size_global() * V->dofmap()->index_map_bs()},
+          "block", status, prm,
+          {{"num_dofs", dofs->size_global() * V->dofmap()->index_map_bs()},
            {"num_cells", geo.mesh->topology().index_map(3)->size_global()},
            {"steps", last.value("step", 0)},
            {"newton_iterations", newton_total},

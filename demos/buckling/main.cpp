@@ -191,12 +191,8 @@ int main(int argc, char* argv[])
       critical.push_back(m.load_factor);
     const double P_cr = modes[0].load_factor;
     writer.write_summary(
-        {{"scene", "buckling"},
-         {"status", "completed"},
-         {"parameters", prm.to_json()},
-         {"versions", gelx::software_versions()},
-         {"mpi_ranks", dolfinx::MPI::size(comm)},
-         {"num_dofs",
+        "buckling", "completed", prm,
+        {{"num_dofs",
           column.displacement()->function_space()->dofmap()->index_map->size_global() * 3},
          {"slenderness", column.slenderness()},
          {"euler_load", column.euler_load()},

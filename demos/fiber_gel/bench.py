@@ -9,8 +9,6 @@ Times are the scene's own wall_time (mesh, setup and the temperature ramp; not M
 """
 import argparse
 import csv
-import json
-import os
 import pathlib
 import subprocess
 import sys
@@ -20,15 +18,15 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from studies import richardson, run_scene  # noqa: E402  (demos/studies.py)
+
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("build", type=pathlib.Path)
 parser.add_argument("out", type=pathlib.Path)
 parser.add_argument("--np-list", default="1,2", help="rank counts")
 parser.add_argument("--skip-sweep", action="store_true", help="do not time the Fig. 4.7 sweep")
 args = parser.parse_args()
-exe = args.build / "demos" / "fiber_gel" / "gelx-fiber_gel"
-env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1")
 CASE = {"l": 200, "L": 300, "D": 40}
 # h_fiber (nm), h_far = 5 h_fiber; P1 needs finer meshes for the same error
 LEVELS = {1: [3, 2, 1.5, 1, 0.75], 2: [4, 3, 2, 1.5]}
@@ -36,32 +34,13 @@ QUANTITIES = ("alpha_perp", "anisotropy")
 
 
 def run(order, h, ranks):
-    folder = args.out / f"p{order}_h{h:g}_np{ranks}"
     options = [a for k, v in {**CASE, "order": order, "h_fiber": h, "h_far": 5 * h}.items()
                for a in (f"--{k}", f"{v:g}")]
-    subprocess.run(["mpirun", "-np", str(ranks), str(exe), "--output", str(folder),
-                    "-newton_monitor", "0", *options], check=True, stdout=subprocess.DEVNULL,
-                   env=env)
-    s = json.loads((folder / "summary.json").read_text())
+    s = run_scene(args.build, "fiber_gel", args.out / f"p{order}_h{h:g}_np{ranks}", ranks,
+                  options)
     return {"order": order, "h_fiber": h, "ranks": ranks, "num_dofs": s["num_dofs"],
             "newton_iterations": s["newton_iterations"], "wall_time": s["wall_time"],
             **{q: s[q] for q in QUANTITIES}}
-
-
-def extrapolate(h, v):
-    """Richardson: v = v* + C h^p through three (h, v), coarse to fine; returns (v*, p)."""
-    ratio = (v[0] - v[1]) / (v[1] - v[2])
-
-    def gap(p):
-        return (h[0] ** p - h[1] ** p) / (h[1] ** p - h[2] ** p) - ratio
-    lo, hi = 0.1, 8.0
-    if gap(lo) * gap(hi) > 0:  # no monotone convergence: fall back to the finest value
-        return v[2], float("nan")
-    for _ in range(100):
-        mid = (lo + hi) / 2
-        lo, hi = (mid, hi) if gap(lo) * gap(mid) > 0 else (lo, mid)
-    p = (lo + hi) / 2
-    return v[2] - (v[1] - v[2]) * h[2] ** p / (h[1] ** p - h[2] ** p), p
 
 
 args.out.mkdir(parents=True, exist_ok=True)
@@ -70,7 +49,7 @@ rows = [run(order, h, r) for r in ranks for order in (1, 2) for h in LEVELS[orde
 reference = {}
 for q in QUANTITIES:
     p2 = [r for r in rows if r["order"] == 2 and r["ranks"] == ranks[0]][1:]
-    reference[q] = extrapolate([r["h_fiber"] for r in p2], [r[q] for r in p2])
+    reference[q] = richardson([r["h_fiber"] for r in p2], [r[q] for r in p2])
     print(f"{q}: extrapolated {reference[q][0]:.7f} (observed order {reference[q][1]:.2f})")
 for r in rows:
     for q in QUANTITIES:

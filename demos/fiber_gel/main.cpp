@@ -136,12 +136,8 @@ int main(int argc, char* argv[])
     // 4. Contraction ratios at T_f next to the 0-D theory's limits
     const auto [chi_B, chi_A] = gel.chi_line();
     writer.write_summary(
-        {{"scene", "fiber_gel"},
-         {"status", status},
-         {"parameters", prm.to_json()},
-         {"versions", gelx::software_versions()},
-         {"mpi_ranks", dolfinx::MPI::size(comm)},
-         {"num_dofs", cell.num_dofs()},
+        "fiber_gel", status, prm,
+        {{"num_dofs", cell.num_dofs()},
          {"num_cells", cell.mesh().mesh->topology().index_map(3)->size_global()},
          {"chi_A", chi_A},
          {"chi_B", chi_B},

@@ -17,16 +17,17 @@ scene folder per run under OUTPUT_DIR/runs.
 """
 import argparse
 import csv
-import json
-import os
 import pathlib
-import subprocess
+import sys
 import time
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from studies import run_scene  # noqa: E402  (demos/studies.py)
 
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("build", type=pathlib.Path)
@@ -36,9 +37,6 @@ parser.add_argument("--figs", default="4.6,4.7,4.9,4.10", help="figures to make"
 parser.add_argument("--D-over-d", default="2,2.5,3,3.5,4,4.5,5,6,7",
                     help="D/d values of Figs. 4.7 and 4.9 (comma list)")
 args, scene_options = parser.parse_known_args()
-exe = args.build / "demos" / "fiber_gel" / "gelx-fiber_gel"
-env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1")
 MESH = {"h_fiber": 3, "h_far": 15}
 d = 10.0  # nm, the thesis' fiber diameter
 D_OVER_D_ROD = [2, 2.5, 3, 4, 5, 6, 8, 10, 15, 20]
@@ -50,13 +48,10 @@ COLUMNS = ["D_over_d", "l_over_d", "L_over_l", "n_nu_vm", "alpha_perp", "alpha_p
 def run(name, **parameters):
     """One scene run; returns its summary.json. The mesh size at the fiber is at most a third
     of the gel's gap between fiber and cell face, (D - d)/2, which narrow cells need."""
-    folder = args.out / "runs" / name
     mesh = dict(MESH, h_fiber=min(MESH["h_fiber"], (parameters.get("D", 50) - d) / 6))
     options = [a for k, v in {**mesh, **parameters}.items() for a in (f"--{k}", f"{v:g}")]
-    subprocess.run(["mpirun", "-np", str(args.np), str(exe), "--output", str(folder),
-                    "-newton_monitor", "0", *options, *scene_options],
-                   check=True, stdout=subprocess.DEVNULL, env=env)
-    return json.loads((folder / "summary.json").read_text())
+    return run_scene(args.build, "fiber_gel", args.out / "runs" / name, args.np,
+                     [*options, *scene_options])
 
 
 def row(s):

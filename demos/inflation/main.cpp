@@ -125,12 +125,8 @@ int main(int argc, char* argv[])
 
     // 6. Summary: the limit point against the closed form, and the cost figures
     writer.write_summary(
-        {{"scene", "inflation"},
-         {"status", "completed"},
-         {"parameters", prm.to_json()},
-         {"versions", gelx::software_versions()},
-         {"mpi_ranks", dolfinx::MPI::size(comm)},
-         {"num_dofs", shell.displacement()->function_space()->dofmap()->index_map->size_global()
+        "inflation", "completed", prm,
+        {{"num_dofs", shell.displacement()->function_space()->dofmap()->index_map->size_global()
                           * 3},
          {"steps", steps},
          {"p_max_over_G", lambda_max},

@@ -1,7 +1,7 @@
 """Work-precision benchmark of the pyramid scene: the slope of l_c/L against d/H and l_c/L at
 d/H = 0.5 (on the least-squares line through all steps, which averages the steps of one node
-spacing that the measured width takes), against wall time, over mesh levels (hexahedra per pyramid block edge, tip graded by
-3 levels), for Q1-P0 and Q2-Q1 elements, at 1 and 2 ranks, and the quarter cell against the
+spacing that the measured width takes), against wall time, over mesh levels (hexahedra per
+pyramid block edge, tip graded by 3 levels), for Q1-P0 and Q2-Q1 elements, at 1 and 2 ranks, and the quarter cell against the
 half cell (the quarter and its mirror image) on one level. The error is measured against the
 value extrapolated from the three finest Q1-P0 levels (Richardson, with the observed order).
 
@@ -10,22 +10,18 @@ usage: bench.py BUILD_DIR OUTPUT_DIR [--quick] [--reuse]
 --reuse: keep the runs already in OUTPUT_DIR, e.g. after adding a level)
 """
 import csv
-import json
-import os
 import pathlib
-import subprocess
 import sys
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from studies import richardson, run_scene  # noqa: E402  (demos/studies.py)
 
 build, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
 quick, reuse = "--quick" in sys.argv[3:], "--reuse" in sys.argv[3:]
-exe = build / "demos" / "pyramid" / "gelx-pyramid"
-env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1")
 D_MAX, TIP_LEVELS = 0.5, 3
 
 # (order, cells, ranks, domain): every level at 2 ranks; 1 rank where it costs under ~2 minutes
@@ -37,40 +33,15 @@ if quick:
 
 
 def run(order, cells, ranks, domain):
-    folder = out / f"q{order}_cells{cells}_np{ranks}_{domain}"
-    if not (reuse and (folder / "summary.json").exists()):
-        subprocess.run(["mpirun", "-np", str(ranks), str(exe), "--output", str(folder),
-                        "--order", str(order), "--cells", str(cells), "--domain", domain,
-                        "--tip_levels", str(TIP_LEVELS), "--d_max", str(D_MAX),
-                        "--extrapolate", "false", "-newton_monitor", "0"],
-                       check=True, stdout=subprocess.DEVNULL, env=env)
-    s = json.loads((folder / "summary.json").read_text())
+    s = run_scene(build, "pyramid", out / f"q{order}_cells{cells}_np{ranks}_{domain}", ranks,
+                  ["--order", str(order), "--cells", str(cells), "--domain", domain,
+                   "--tip_levels", str(TIP_LEVELS), "--d_max", str(D_MAX),
+                   "--extrapolate", "false"], reuse)
     return {"order": order, "cells": cells, "ranks": ranks, "domain": domain,
-            "dofs": s["num_dofs"],
-            "hexahedra": s["num_cells"], "wall_time": s["wall_time"],
+            "dofs": s["num_dofs"], "hexahedra": s["num_cells"], "wall_time": s["wall_time"],
             "slope": s["slope_lc_vs_d"],
             "width": s["slope_lc_vs_d"] * D_MAX + s["intercept_lc_vs_d"],
             "force": s["final_force"], "area_ratio": s["area_ratio"]}
-
-
-def richardson(h, v):
-    """Limit and order of v(h) = v0 + c h^p from three levels (h decreasing), or the finest
-    value and nan when the three do not converge monotonically at an order p > 0.1."""
-    (h1, h2, h3), (v1, v2, v3) = h, v
-    ratio = (v2 - v3) / (v1 - v2) if v1 != v2 else -1
-    slowest = (h2**0.1 - h3**0.1) / (h1**0.1 - h2**0.1)  # the ratio at p = 0.1
-    if not 0 < ratio < slowest:
-        return v3, float("nan")
-    # (h2^p - h3^p) / (h1^p - h2^p) = ratio: bisection on p
-    lo, hi = 0.1, 8.0
-    for _ in range(200):
-        p = 0.5 * (lo + hi)
-        if (h2**p - h3**p) / (h1**p - h2**p) > ratio:  # the ratio falls as p grows
-            lo = p
-        else:
-            hi = p
-    c = (v1 - v2) / (h1**p - h2**p)
-    return v3 - c * h3**p, p
 
 
 out.mkdir(parents=True, exist_ok=True)

@@ -238,12 +238,8 @@ int main(int argc, char* argv[])
             = g.cells * by_d.slope - (g.cells - 1) * coarse_curve.by_d().slope;
     }
     writer.write_summary(
-        {{"scene", "pyramid"},
-         {"status", status},
-         {"parameters", prm.to_json()},
-         {"versions", gelx::software_versions()},
-         {"mpi_ranks", dolfinx::MPI::size(comm)},
-         {"num_dofs", pyramid.state()->function_space()->dofmap()->index_map->size_global()},
+        "pyramid", status, prm,
+        {{"num_dofs", pyramid.state()->function_space()->dofmap()->index_map->size_global()},
          {"num_cells", pyramid.mesh().mesh->topology().index_map(3)->size_global()},
          {"final_d_over_H", last_d},
          {"final_force", last.force},

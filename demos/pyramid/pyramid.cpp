@@ -5,12 +5,13 @@
 #include "mixed_hex_q1.h" // forms/mixed_hex_q1.py
 
 #include <algorithm>
-#include <set>
 #include <cmath>
 #include <dolfinx/common/MPI.h>
 #include <dolfinx/fem/utils.h>
+#include <gelx/collectives.h>
 #include <gelx/mixed.h>
 #include <gelx/parameters.h>
+#include <set>
 
 using namespace dolfinx;
 
@@ -18,21 +19,6 @@ namespace gelx::scenes
 {
 namespace
 {
-/// Concatenate every rank's values on every rank.
-std::vector<double> all_gather(MPI_Comm comm, const std::vector<double>& local)
-{
-  const int size = dolfinx::MPI::size(comm);
-  int n = static_cast<int>(local.size());
-  std::vector<int> counts(size), offsets(size + 1, 0);
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-  for (int r = 0; r < size; ++r)
-    offsets[r + 1] = offsets[r] + counts[r];
-  std::vector<double> all(offsets.back());
-  MPI_Allgatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
-                 MPI_DOUBLE, comm);
-  return all;
-}
-
 /// The generated kernels of one law on one element.
 struct LawForms
 {

@@ -8,10 +8,7 @@ after its parameters; a folder that holds a completed run is reused, so an inter
 resumes where it stopped).
 """
 import csv
-import json
-import os
 import pathlib
-import subprocess
 import sys
 
 import matplotlib
@@ -19,11 +16,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from studies import run_scene  # noqa: E402  (demos/studies.py)
+
 build, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
 scene_options = sys.argv[3:]
-exe = build / "demos" / "pyramid" / "gelx-pyramid"
-env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1")
 L = 8.0  # um, the thesis' pyramid
 # The reference case (the scene's defaults, spelled out so that equal cases are run once)
 REFERENCE = {"L": L, "W": 8 * L, "t": 4 * L, "law": "nh"}
@@ -45,14 +42,9 @@ def run(study, label, parameters):
     parameters = {**REFERENCE, **parameters}
     folder = out / "_".join(f"{k}_{v}" if isinstance(v, str) else f"{k}{v:g}"
                             for k, v in sorted(parameters.items()))
-    summary_file = folder / "summary.json"
-    if not (summary_file.exists()
-            and json.loads(summary_file.read_text())["status"] == "completed"):
-        args = [a for k, v in parameters.items() for a in (f"--{k}", str(v))]
-        subprocess.run(["mpirun", "-np", "2", str(exe), "--output", str(folder),
-                        "-newton_monitor", "0", "--extrapolate", "false", *scene_options,
-                        *args], check=True, stdout=subprocess.DEVNULL, env=env)
-    summary = json.loads((folder / "summary.json").read_text())
+    args = [a for k, v in parameters.items() for a in (f"--{k}", str(v))]
+    summary = run_scene(build, "pyramid", folder, 2,
+                        ["--extrapolate", "false", *scene_options, *args], reuse=True)
     rows = list(csv.DictReader(open(folder / "steps.csv")))
     return {"study": study, "label": label, "folder": folder.name,
             "d": np.array([float(r["d_over_H"]) for r in rows]),

@@ -48,4 +48,7 @@ def build(cell, displacement_degree=2):
         expressions += [(stress[name], centroid), (energy, centroid)]
     out["det_F"] = J
     expressions.append((J, materials.quadrature_points(cell, degree)))
+    # The current volume (int J dX): the incompressibility that the pressure enforces weakly
+    out["volume"] = J * dx
+    forms.append(out["volume"])
     return out, forms, expressions

@@ -14,6 +14,8 @@
 #include <gelx/output.h>
 #include <map>
 #include <memory>
+#include <numeric>
+#include <xtensor/xtensor.hpp>
 #include <string>
 
 namespace gelx::test
@@ -81,6 +83,31 @@ inline std::pair<double, double> value_range(const dolfinx::fem::Function<double
   MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_DOUBLE, MPI_MAX, comm);
   MPI_Allreduce(MPI_IN_PLACE, &any_nan, 1, MPI_INT, MPI_LOR, comm);
   return any_nan ? std::pair<double, double>{NAN, NAN} : std::pair<double, double>{lo, hi};
+}
+
+/// Smallest and largest value of a scalar Expression over the evaluation points of every owned
+/// cell (all ranks); NaN propagates as (NaN, NaN).
+inline std::pair<double, double> expression_range(const dolfinx::fem::Expression<double>& e)
+{
+  const auto& mesh = *e.mesh();
+  const std::int32_t num_cells = mesh.topology().index_map(mesh.topology().dim())->size_local();
+  std::vector<std::int32_t> cells(num_cells);
+  std::iota(cells.begin(), cells.end(), 0);
+  xt::xtensor<double, 2> values({cells.size(), e.X().second[0] * e.value_size()});
+  e.eval(cells, values);
+  double lo = INFINITY, hi = -INFINITY;
+  int nan = 0;
+  for (double v : values)
+  {
+    nan = nan || std::isnan(v);
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  MPI_Comm comm = mesh.comm();
+  MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &nan, 1, MPI_INT, MPI_LOR, comm);
+  return nan ? std::pair<double, double>{NAN, NAN} : std::pair<double, double>{lo, hi};
 }
 
 /// True when every value of every function is finite (all ranks).

@@ -116,7 +116,8 @@ int main(int argc, char* argv[])
       gelx::LoadStepper constrain(problem, newton, {}, [&](double t) { gel.bcs->update(t); });
       constrain.run([](const gelx::StepRecord&) {});
       const double chi_c = theory::chi_free(phi_c, p.n);
-      bool negative_below = true, positive_above = true;
+      // Counts of the states on each side of phi_c and of those with the sign of Eq. 4.11
+      int below = 0, above = 0, negative_below = 0, positive_above = 0;
       for (double chi : {0.45, 0.52, 0.62, 0.7, 0.8})
       {
         const double T = p.temperature(chi);
@@ -141,16 +142,28 @@ int main(int argc, char* argv[])
                         std::max(std::abs(sigma[0].first), std::abs(sigma[0].second)) / p.kT_nu(T),
                         0.0, 1e-10);
         if (phi < phi_c)
-          negative_below = negative_below && sigma3 < 0;
+        {
+          ++below;
+          negative_below += sigma3 < 0;
+        }
         else
-          positive_above = positive_above && sigma3 > 0;
+        {
+          ++above;
+          positive_above += sigma3 > 0;
+        }
         if (dolfinx::MPI::rank(comm) == 0)
           std::printf("      phi = %.8f  phi - phi_c = %+.4f  sigma3 nu/kT = %+.6e\n", phi,
                       phi - phi_c, sigma3);
       }
-      checks.require("sigma3 < 0 for every phi < phi_c and > 0 for every phi > phi_c "
-                     "(sign change at phi_c, Eq. 4.11)",
-                     negative_below && positive_above);
+      // The sign change needs states on both sides: the chi values above straddle chi_c
+      checks.require("states on both sides of phi_c: " + std::to_string(below) + " below, "
+                         + std::to_string(above) + " above",
+                     below > 0 && above > 0);
+      checks.require("sigma3 < 0 for every phi < phi_c (" + std::to_string(negative_below) + " of "
+                         + std::to_string(below) + ") and > 0 for every phi > phi_c ("
+                         + std::to_string(positive_above) + " of " + std::to_string(above)
+                         + "): the sign change at phi_c of Eq. 4.11",
+                     negative_below == below && positive_above == above);
     }
     status = checks.finish();
   }

@@ -265,8 +265,19 @@ int incompressible(MPI_Comm comm, Checks& checks)
                        + std::to_string(r.newton.iterations) + " <= 8 Newton iterations",
                    r.newton.iterations <= 8);
   }
-  // Volume preserved: J - 1 = p / K, |p| of order G, so |J - 1| <= ~1e-5
+  // Volume preserved. The P1 pressure enforces J - 1 = p/K weakly (against every P1 function),
+  // not at each point: near the clamped edges, where the shear is singular, J departs from 1
+  // (measured max |J - 1| = 0.64 at a quadrature point, printed below). With the test function
+  // 1 the constraint gives the volume: |int (J - 1) dX| = |int p dX| / K, |p| ~ G, so the volume
+  // change is ~1e-6 of V; 1e-5 fails for a pressure that does not enforce the constraint (a
+  // free compressible block under this load changes its volume by percents).
   checks.require("det F > 0 everywhere", problem.admissibility_margin() > 0);
+  const auto [J_min, J_max] = expression_range(*det_F);
+  if (root)
+    std::printf("  J over the quadrature points: [%.4f, %.4f]\n", J_min, J_max);
+  auto volume = std::make_shared<fem::Form<double>>(
+      fem::create_form<double>(*form_mixed_tet_volume, {}, coefficients, constants, {}, box.mesh));
+  checks.absolute("volume change |int J dX - V| / V", std::abs(gelx::assemble_global_scalar(*volume) - 1.0), 0.0, 1e-5);
   auto p = gelx::collapse_sub_function(*w, 1);
   gelx::CellField sigma("sigma", make_expression(expression_mixed_tet_stress_nh, coefficients,
                                                  constants, box.mesh));

@@ -9,6 +9,7 @@
 namespace check
 {
 inline int failures = 0;
+inline int passes = 0;
 
 /// |measured - expected| <= tol
 inline void near(const std::string& what, double measured, double expected, double tol)
@@ -17,6 +18,7 @@ inline void near(const std::string& what, double measured, double expected, doub
   std::printf("%-4s %-58s measured %.12g expected %.12g tol %.3g\n", ok ? "ok" : "FAIL",
               what.c_str(), measured, expected, tol);
   failures += !ok;
+  passes += ok;
 }
 
 /// condition, with the numbers that decide it printed by the caller
@@ -24,11 +26,12 @@ inline void that(const std::string& what, bool ok)
 {
   std::printf("%-4s %s\n", ok ? "ok" : "FAIL", what.c_str());
   failures += !ok;
+  passes += ok;
 }
 
 inline int result()
 {
-  std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "PASSED", failures);
+  std::printf("%d passed, %d failed\n", passes, failures);
   return failures ? 1 : 0;
 }
 } // namespace check

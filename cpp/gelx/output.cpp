@@ -7,11 +7,11 @@
 #include <dolfinx/common/version.h>
 #include <dolfinx/fem/FunctionSpace.h>
 #include <dolfinx/fem/utils.h>
-#include <dolfinx/io/XDMFFile.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <sstream>
 #include <numeric>
 #include <xtensor/xtensor.hpp>
 #include <gmsh.h>
@@ -103,38 +103,61 @@ NodalField::NodalField(const std::string& name,
 
 void NodalField::update() { _f->interpolate(*_u); }
 
-ResultsWriter::ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
-                             std::shared_ptr<const dolfinx::mesh::Mesh> mesh)
-    : _comm(comm), _folder(folder), _root(dolfinx::MPI::rank(comm) == 0)
+namespace
+{
+/// Create `folder` for a new run's results and clear what an earlier run left there, so that
+/// it cannot pass for this run's; returns `folder`. Collective.
+const std::filesystem::path& prepare_folder(MPI_Comm comm, const std::filesystem::path& folder)
 {
   int ok = 1;
-  if (_root)
+  if (dolfinx::MPI::rank(comm) == 0)
   {
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
     ok = !ec;
-    // Results of a previous run in the same folder must not pass for this run's
-    std::filesystem::remove(folder / "steps.csv", ec);
-    std::filesystem::remove(folder / "summary.json", ec);
+    for (const char* old : {"steps.csv", "summary.json", "fields.h5"})
+      std::filesystem::remove(folder / old, ec);
   }
   MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
   if (!ok)
     throw InputError("cannot create output folder '" + folder.string() + "'");
-  dolfinx::io::XDMFFile file(comm, folder / "fields.xdmf", "w");
-  file.write_mesh(*mesh);
+  return folder;
 }
 
-void ResultsWriter::write_fields(
-    double t, const std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>>& fields)
+/// Replace `path` by what `write` writes: written aside, then renamed (atomic on POSIX file
+/// systems), so that a reader, or a run killed meanwhile, never leaves half a file.
+void replace_file(const std::filesystem::path& path,
+                  const std::function<void(std::ostream&)>& write,
+                  std::ios::openmode mode = std::ios::out)
 {
-  dolfinx::io::XDMFFile file(_comm, _folder / "fields.xdmf", "a");
-  for (const auto& f : fields)
-    file.write_function(*f, t);
-  file.close();
+  const auto aside = path.string() + ".tmp";
+  {
+    std::ofstream out(aside, mode);
+    write(out);
+  }
+  std::filesystem::rename(aside, path);
 }
-
-namespace
+/// Binary STL: an 80-byte header, the triangle count, then per triangle a normal, three
+/// vertices (float32) and two attribute bytes.
+void write_binary_stl(std::ostream& out, const std::vector<Triangle>& triangles)
 {
+  std::array<char, 80> header{};
+  const std::string title = "gelx deformed surface";
+  std::copy(title.begin(), title.end(), header.begin());
+  out.write(header.data(), header.size());
+  const auto count = static_cast<std::uint32_t>(triangles.size());
+  out.write(reinterpret_cast<const char*>(&count), sizeof(count));
+  for (const auto& t : triangles)
+  {
+    std::array<float, 12> record{}; // normal (left zero: readers use the vertex order), vertices
+    for (int v = 0; v < 3; ++v)
+      for (int k = 0; k < 3; ++k)
+        record[3 + 3 * v + k] = static_cast<float>(t[v][k]);
+    out.write(reinterpret_cast<const char*>(record.data()), sizeof(record));
+    const std::uint16_t attributes = 0;
+    out.write(reinterpret_cast<const char*>(&attributes), sizeof(attributes));
+  }
+}
 void write_csv_header(std::ostream& out, const std::vector<std::string>& columns)
 {
   for (std::size_t i = 0; i < columns.size(); ++i)
@@ -172,17 +195,33 @@ nlohmann::json software_versions()
 }
 } // namespace
 
+ResultsWriter::ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
+                             std::shared_ptr<const dolfinx::mesh::Mesh> mesh)
+    : _comm(comm), _folder(folder), _fields(comm, prepare_folder(comm, folder), *mesh),
+      _root(dolfinx::MPI::rank(comm) == 0)
+{
+}
+
+void ResultsWriter::write_fields(
+    double t, const std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>>& fields)
+{
+  _fields.write(t, fields);
+}
+
+
 void ResultsWriter::append_step(const nlohmann::json& row)
 {
   if (!_root)
     return;
-  const bool first = _columns.empty();
-  if (first)
+  std::ostringstream out;
+  if (_columns.empty())
+  {
     _columns = keys(row);
-  std::ofstream out(_folder / "steps.csv", std::ios::app);
-  if (first)
     write_csv_header(out, _columns);
+  }
   write_csv_row(out, _columns, row);
+  _csv += out.str();
+  replace_file(_folder / "steps.csv", [&](std::ostream& file) { file << _csv; });
 }
 
 void ResultsWriter::write_table(const std::string& file_name,
@@ -190,11 +229,14 @@ void ResultsWriter::write_table(const std::string& file_name,
 {
   if (!_root || rows.empty())
     return;
-  std::ofstream out(_folder / file_name);
-  const auto columns = keys(rows.front());
-  write_csv_header(out, columns);
-  for (const auto& row : rows)
-    write_csv_row(out, columns, row);
+  replace_file(_folder / file_name,
+               [&](std::ostream& out)
+               {
+                 const auto columns = keys(rows.front());
+                 write_csv_header(out, columns);
+                 for (const auto& row : rows)
+                   write_csv_row(out, columns, row);
+               });
 }
 
 void ResultsWriter::write_summary(const std::string& scene, const std::string& status,
@@ -205,14 +247,9 @@ void ResultsWriter::write_summary(const std::string& scene, const std::string& s
                      {"parameters", parameters.to_json()},
                      {"versions", software_versions()},
                      {"mpi_ranks", dolfinx::MPI::size(_comm)}});
-  if (!_root)
-    return;
-  const auto tmp = _folder / "summary.json.tmp";
-  {
-    std::ofstream out(tmp);
-    out << quantities.dump(2) << "\n";
-  }
-  std::filesystem::rename(tmp, _folder / "summary.json");
+  if (_root)
+    replace_file(_folder / "summary.json",
+                 [&](std::ostream& out) { out << quantities.dump(2) << "\n"; });
 }
 
 void ResultsWriter::write_stl(const std::string& file_name,
@@ -222,23 +259,8 @@ void ResultsWriter::write_stl(const std::string& file_name,
     return;
   const auto path = _folder / file_name;
   std::filesystem::create_directories(path.parent_path());
-  std::ofstream out(path, std::ios::binary);
-  std::array<char, 80> header{};
-  const std::string title = "gelx deformed surface";
-  std::copy(title.begin(), title.end(), header.begin());
-  out.write(header.data(), header.size());
-  const auto count = static_cast<std::uint32_t>(triangles.size());
-  out.write(reinterpret_cast<const char*>(&count), sizeof(count));
-  for (const auto& t : triangles)
-  {
-    std::array<float, 12> record{}; // normal (left zero: readers use the vertex order), vertices
-    for (int v = 0; v < 3; ++v)
-      for (int k = 0; k < 3; ++k)
-        record[3 + 3 * v + k] = static_cast<float>(t[v][k]);
-    out.write(reinterpret_cast<const char*>(record.data()), sizeof(record));
-    const std::uint16_t attributes = 0;
-    out.write(reinterpret_cast<const char*>(&attributes), sizeof(attributes));
-  }
+  replace_file(path, [&](std::ostream& out) { write_binary_stl(out, triangles); },
+               std::ios::binary);
 }
 
 std::vector<Triangle> deformed_surface(const dolfinx::fem::Function<double>& u_p1,

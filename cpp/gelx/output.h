@@ -2,8 +2,11 @@
 /// @file output.h
 /// Results of a run: XDMF/HDF5 field series, a per-step CSV, and summary.json.
 ///
-/// Every converged step is appended and the files are closed again, so a run stopped half-way
-/// leaves every completed step readable (ParaView opens fields.xdmf).
+/// Every file is replaced whole by a complete new version (written aside, then renamed), so a
+/// run stopped half-way, even by SIGKILL, leaves every completed step readable: ParaView opens
+/// fields.xdmf, steps.csv has one row per completed step.
+
+#include "field_series.h"
 
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/Function.h>
@@ -71,15 +74,16 @@ std::vector<Triangle> deformed_surface(const dolfinx::fem::Function<double>& u_p
 class ResultsWriter
 {
 public:
-  /// Creates `folder` and writes the mesh into folder/fields.xdmf (+ .h5).
+  /// Creates `folder` and starts its field series (fields.xdmf, fields/) on `mesh`.
   ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
                 std::shared_ptr<const dolfinx::mesh::Mesh> mesh);
 
-  /// Append the fields at time (load factor) t to fields.xdmf, then close the file.
+  /// Append the fields at time (load factor) t to fields.xdmf as one step.
   void write_fields(double t,
                     const std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>>& f);
 
-  /// Append one row to steps.csv (columns from the first row's keys), then flush.
+  /// Append one row to steps.csv (columns from the first row's keys); the file is replaced by
+  /// its new version, so it always holds whole rows.
   void append_step(const nlohmann::json& row);
 
   /// Write a whole table (columns from the first row's keys) to folder/file_name.
@@ -99,7 +103,9 @@ public:
 private:
   MPI_Comm _comm;
   std::filesystem::path _folder;
+  FieldSeries _fields;
   std::vector<std::string> _columns;
+  std::string _csv; ///< steps.csv as written so far
   bool _root;
 };
 

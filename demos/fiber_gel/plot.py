@@ -9,11 +9,13 @@ import json
 import pathlib
 import sys
 
-import h5py
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from fields import FieldSeries  # noqa: E402  (demos/fields.py)
 
 out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())
@@ -30,11 +32,9 @@ left.set(xlabel="T (K)", ylabel="contraction ratio", title="temperature ramp")
 left.legend(fontsize=8)
 
 # Cells of the 1/8 cell (or of the whole cell) that touch the plane y = 0, at their centroids
-with h5py.File(out / "fields.h5", "r") as h5:
-    x = h5["Mesh/mesh/geometry"][:]
-    cells = h5["Mesh/mesh/topology"][:]
-    last = sorted(h5["Function/sigma_vm"], key=lambda t: float(t.replace("_", ".")))[-1]
-    vm = h5["Function/sigma_vm"][last][:].ravel()
+series = FieldSeries(out)
+x, cells = series.mesh(-1)
+vm = series.field("sigma_vm", -1).ravel()
 on_plane = np.abs(x[cells, 1]).min(axis=1) < 1e-9 * np.abs(x).max()
 centroids = x[cells[on_plane]].mean(axis=1)
 shown = right.tricontourf(centroids[:, 0], centroids[:, 2], vm[on_plane], levels=30)

@@ -191,14 +191,15 @@ int TaggedMesh::tag(const std::string& name) const
 }
 
 TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
-                    const std::map<std::string, double>& numbers)
+                    const std::map<std::string, double>& numbers,
+                    const std::vector<int>& mirror_axes)
 {
   if (!std::filesystem::is_regular_file(geo_file))
     throw InputError("mesh file '" + geo_file + "' not found");
   std::vector<std::string> args;
   for (auto& [name, value] : numbers)
     args.insert(args.end(), {"-setnumber", name, std::to_string(value)});
-  return mesh_gmsh_model(comm, [&]() { gmsh::open(geo_file); }, args);
+  return mesh_gmsh_model(comm, [&]() { gmsh::open(geo_file); }, args, mirror_axes);
 }
 
 TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,

@@ -34,10 +34,11 @@ struct TaggedMesh
 /// `numbers` overrides the file's `DefineConstant`/variables (gmsh `-setnumber`), so a
 /// scene's geometry parameters reach the mesh without editing the file. Physical volumes become
 /// cell tags and physical surfaces facet tags. Linear tetrahedra and hexahedra are supported.
-/// Throws gelx::InputError when the file is missing (checked on every rank before any
-/// collective call).
+/// `mirror_axes` as for mesh_gmsh_model. Throws gelx::InputError when the file is missing
+/// (checked on every rank before any collective call).
 TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
-                    const std::map<std::string, double>& numbers = {});
+                    const std::map<std::string, double>& numbers = {},
+                    const std::vector<int>& mirror_axes = {});
 
 /// Mesh a model that `build` creates with the gmsh API (gmsh is initialised, with `gmsh_args`
 /// as its command line, on rank 0 only) and distribute it over `comm`, as read_geo does. For

@@ -69,25 +69,28 @@ struct WidthCurve
 };
 
 /// Press the pyramid: the substrate moves by d = s d_max H as the load factor s goes from 0
-/// to 1. After each converged step `record(step, d/H, measures)` is called and the curve
-/// extended. Returns "completed" or "failed: why" (the completed steps stay recorded).
+/// to 1 or, with `unload`, to d_max H and back to 0 (d = (1 - |1 - 2 s|) d_max H). After each
+/// converged step `record(step, d/H, measures)` is called and the curve extended with the
+/// loading steps. Returns "completed" or "failed: why" (the completed steps stay recorded).
 std::string press(gelx::scenes::PressedPyramid& pyramid, const gelx::Parameters& prm,
                   WidthCurve& curve,
                   const std::function<void(const gelx::StepRecord&, double,
                                            const gelx::scenes::ContactMeasures&)>& record)
 {
   const double d_max = prm.real("d_max"), H = pyramid.height(), L = prm.real("L");
+  const bool unload = prm.flag("unload");
+  auto d_over_H = [&](double s) { return (unload ? 1 - std::abs(1 - 2 * s) : s) * d_max; };
   gelx::NewtonSolver newton(pyramid.mesh().mesh->comm());
   try
   {
     gelx::LoadStepper(pyramid.system(), newton, gelx::LoadSteppingOptions::from(prm),
-                      [&](double s) { pyramid.set_indentation(s * d_max * H); })
+                      [&](double s) { pyramid.set_indentation(d_over_H(s) * H); })
         .run(
             [&](const gelx::StepRecord& step)
             {
               const auto measures = pyramid.measure(); // also refreshes the displacement
-              const double d = step.t * d_max;
-              if (measures.width > 0)
+              const double d = d_over_H(step.t);
+              if (measures.width > 0 && !(unload && step.t > 0.5))
               {
                 curve.d.push_back(d);
                 curve.width.push_back(measures.width / L);
@@ -136,6 +139,8 @@ int main(int argc, char* argv[])
           [](int v) { return v == 1 || v == 2 ? "" : "must be 1 or 2"; });
   prm.add("output", "extrapolate", true,
           "also run the next coarser mesh for the Richardson limit of the slope");
+  prm.add("loading", "unload", false,
+          "after reaching d_max, move the substrate back to d = 0 (the fits use the loading half)");
   prm.add("loading", "d_max", 0.8, "final indentation d/H",
           [](double v) { return v > 0 && v < 1 ? "" : "must be in (0, 1)"; });
   // Steps of 0.0125 H growing to 0.025 H (at d_max = 0.8): the patch gains a ring of nodes in

@@ -20,7 +20,8 @@ NonlinearProblem::NonlinearProblem(std::shared_ptr<dolfinx::fem::Function<double
                                    BCs bcs,
                                    std::shared_ptr<const dolfinx::fem::Expression<double>> admissibility)
     : _u(std::move(u)), _R(std::move(residual_form)), _J(std::move(tangent_form)),
-      _bcs(std::move(bcs)), _admissibility(std::move(admissibility))
+      _bcs(std::move(bcs)), _admissibility(std::move(admissibility)),
+      _lifting(int_option("", "dirichlet_lifting", 1) != 0)
 {
   _x = dolfinx::la::petsc::create_vector_wrap(*_u->x());
 }
@@ -117,6 +118,11 @@ void NonlinearProblem::internal_forces(Vec f) const
 
 void NonlinearProblem::residual(Vec r)
 {
+  if (!_lifting)
+  {
+    dolfinx::fem::petsc::set_bc(_x, _bcs, nullptr, 1.0); // u_D = g on the iterate
+    unknowns_changed();
+  }
   assemble_local(r);
   dolfinx::fem::petsc::apply_lifting(r, {_J}, {_bcs}, {_x}, -1.0);
   GELX_PETSC(VecGhostUpdateBegin(r, ADD_VALUES, SCATTER_REVERSE));

@@ -45,6 +45,8 @@ public:
 /// first Newton correction after a change of g therefore moves the constrained dofs onto g and
 /// spreads that increment through the body with the tangent (a linear predictor), instead of
 /// leaving it to a crushed layer of boundary elements; once u_D = g the lifted residual is R(u).
+/// The option `-dirichlet_lifting 0` imposes u_D = g on the iterate instead (before each
+/// residual), the textbook way, to measure what lifting saves (README.md).
 class NonlinearProblem : public NonlinearSystem
 {
 public:
@@ -90,6 +92,7 @@ private:
   std::shared_ptr<const dolfinx::fem::Form<double>> _R, _J;
   BCs _bcs;
   std::shared_ptr<const dolfinx::fem::Expression<double>> _admissibility;
+  bool _lifting; ///< -dirichlet_lifting (see the class comment)
   /// Assemble R(u) into the owned and ghost entries of f, without sending ghosts to owners.
   void assemble_local(Vec f) const;
   Vec _x = nullptr; // PETSc view of _u's coefficients (shares memory, with ghosts)

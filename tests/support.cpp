@@ -6,7 +6,7 @@
 #include <dolfinx/common/log.h>
 #include <gelx/mesh.h>
 #include <gelx/petsc_utils.h>
-#include <petscsys.h>
+#include <slepcsys.h>
 
 namespace gelx::test
 {
@@ -64,7 +64,7 @@ int Checks::finish() const
 int run_checks(int argc, char* argv[],
                const std::function<void(MPI_Comm, Checks&)>& checks_of)
 {
-  PetscInitialize(&argc, &argv, nullptr, nullptr);
+  SlepcInitialize(&argc, &argv, nullptr, nullptr); // PETSc, and SLEPc for eigenproblems
   int status;
   {
     Checks checks(PETSC_COMM_WORLD);
@@ -72,7 +72,7 @@ int run_checks(int argc, char* argv[],
     checks_of(PETSC_COMM_WORLD, checks);
     status = checks.finish();
   }
-  PetscFinalize();
+  SlepcFinalize();
   return status;
 }
 

@@ -62,7 +62,7 @@ private:
   int _passed = 0, _failed = 0;
 };
 
-/// The body of a verification program: initialise PETSc, run `checks_of(comm, checks)` with
+/// The body of a verification program: initialise PETSc and SLEPc, run `checks_of(comm, checks)` with
 /// the Newton monitor off by default, print the tally, finalise; returns the exit code.
 int run_checks(int argc, char* argv[],
                const std::function<void(MPI_Comm, Checks&)>& checks_of);

@@ -8,28 +8,24 @@ import json
 import math
 import pathlib
 import sys
-import xml.etree.ElementTree as ET
 
-import h5py
 import numpy as np
 
 from checks import Checks
+from xdmf_fields import XdmfOutput
 
 out = pathlib.Path(sys.argv[1])
 summary = json.loads((out / "summary.json").read_text())
 prm = summary["parameters"]
 checks = Checks()
 
-xdmf = ET.parse(out / "fields.xdmf").getroot()
-domain = xdmf.find("Domain")
-mesh_grid = domain.find("Grid[@Name='mesh']")
-cells_dims = mesh_grid.find("Topology/DataItem").get("Dimensions").split()
+xdmf = XdmfOutput(out)
+cells_dims = xdmf.mesh_grid.find("Topology/DataItem").get("Dimensions").split()
 checks.require(f"topology holds {cells_dims[0]} cells of {cells_dims[1]} nodes; summary says "
                f"{summary['num_cells']} tetrahedra",
                int(cells_dims[0]) == summary["num_cells"] and int(cells_dims[1]) == 4)
 
-series = domain.find("Grid[@Name='displacement']")
-steps = series.findall("Grid")
+steps = xdmf.steps("displacement")
 times = [float(g.find("Time").get("Value")) for g in steps]
 checks.require(f"{len(steps)} displacement steps in fields.xdmf; summary and steps.csv say "
                f"{summary['steps']}", len(steps) == summary["steps"])
@@ -40,13 +36,11 @@ checks.absolute("time of the last step", times[-1], 1.0, 1e-12)
 
 # The top face z = H was moved rigidly: u = R(twist) X - X in the plane, u_z = (stretch - 1) H.
 # The vertex values are the Dirichlet values up to round-off.
-with h5py.File(out / "fields.h5", "r") as h5:
-    X = h5["Mesh/mesh/geometry"][:]
-    checks.require(f"geometry holds {X.shape[0]} nodes, topology refers to "
-                   f"{int(h5['Mesh/mesh/topology'][:].max()) + 1}",
-                   X.shape[0] == int(h5["Mesh/mesh/topology"][:].max()) + 1)
-    path = steps[-1].find("Attribute/DataItem").text.split(":")[1]
-    u = h5[path][:]
+X = xdmf.geometry()
+highest_node = int(xdmf.topology().max())
+checks.require(f"geometry holds {X.shape[0]} nodes, topology refers to {highest_node + 1}",
+               X.shape[0] == highest_node + 1)
+_, u = xdmf.field("displacement")
 H, stretch, twist = prm["height"], prm["stretch"], math.radians(prm["twist"])
 top = np.abs(X[:, 2] - H) < 1e-9 * H
 c, s = math.cos(twist), math.sin(twist)

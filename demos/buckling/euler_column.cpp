@@ -71,7 +71,6 @@ double EulerColumn::euler_load() const
 
 void EulerColumn::set_load_factor(double lambda)
 {
-  _load_factor = lambda;
   if (_p.clamped_clamped)
     _bcs->update(lambda);
   else
@@ -80,10 +79,8 @@ void EulerColumn::set_load_factor(double lambda)
 
 double EulerColumn::axial_force() const
 {
-  if (!_p.clamped_clamped)
-    return _load_factor; // a dead load: its resultant is what was set
-  return -boundary_resultant(*_problem, *_box.facet_tags, _box.tag("z_max")).force[2]
-         / euler_load();
+  // Measured, not the load that was set: the internal forces at the clamped nodes
+  return boundary_resultant(*_problem, *_box.facet_tags, _box.tag("z_min")).force[2];
 }
 
 std::vector<BucklingMode> EulerColumn::buckling_modes(int num_modes)
@@ -106,7 +103,8 @@ std::vector<BucklingMode> EulerColumn::buckling_modes(int num_modes)
               [&](double t) { set_load_factor(t * perturbation); })
       .run([](const StepRecord&) {});
   _problem->tangent(KQ);
-  const double P = axial_force(); // the perturbation in Euler loads (a reaction if clamped)
+  // The perturbation in Euler loads, as the column carries it
+  const double P = axial_force() / euler_load();
   auto modes = LinearBuckling(_box.mesh->comm()).solve(K0, KQ, num_modes, _u->function_space());
   MatDestroy(&K0);
   MatDestroy(&KQ);

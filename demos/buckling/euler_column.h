@@ -36,7 +36,7 @@ struct ColumnParameters
 ///
 /// Clamped-free: a dead axial traction loads the free end z = L (effective length 2L).
 /// Clamped-clamped: the end z = L is held laterally and shortened by a prescribed uniform u_z,
-/// which also keeps it from rotating (effective length L/2); the axial force is its reaction.
+/// which also keeps it from rotating (effective length L/2).
 /// Load factors are measured in Euler loads: lambda = 1 is P = pi^2 E I / (K L)^2 (a traction
 /// lambda times that over the area, or the shortening that carries it in the straight column).
 class EulerColumn
@@ -57,7 +57,8 @@ public:
   /// Set the load to lambda Euler loads (traction, or prescribed shortening).
   void set_load_factor(double lambda);
 
-  /// The compressive axial force the column carries now, in Euler loads.
+  /// The compressive axial force the column carries now (force units): the reaction on the
+  /// clamped end z = 0, which carries the whole load in either set-up. Collective.
   double axial_force() const;
 
   /// Linear buckling about the unloaded state (thesis Eq. 1.13, gelx::LinearBuckling): the
@@ -90,7 +91,6 @@ private:
   std::map<std::string, std::shared_ptr<const dolfinx::fem::Constant<double>>> _constants;
   std::unique_ptr<DirichletConditions> _bcs;
   std::unique_ptr<NonlinearProblem> _problem;
-  double _load_factor = 0;
 };
 
 } // namespace gelx::scenes

@@ -87,7 +87,9 @@ int main(int argc, char* argv[])
     for (std::size_t k = 0; k < modes.size(); ++k)
     {
       auto [odd, even] = column.mode_odd_even_parts(modes[k].shape);
+      // critical_load: the eigenvalue times the measured perturbation force, in force units
       eigen_rows.push_back({{"mode", k + 1},
+                            {"critical_load", modes[k].load_factor * column.euler_load()},
                             {"critical_load_over_euler", modes[k].load_factor},
                             {"odd_part", odd},
                             {"even_part", even}});
@@ -109,10 +111,12 @@ int main(int argc, char* argv[])
       path_time += seconds(step_start);
       ++path_steps;
       corrector_iterations += pt.iterations;
-      const double deflection = column.lateral_deflection(), force = column.axial_force();
+      const double deflection = column.lateral_deflection();
+      const double axial_force = column.axial_force(), force = axial_force / column.euler_load();
       writer.append_step({{"path", path},
                           {"step", pt.step},
                           {"load_factor", pt.load_factor},
+                          {"axial_force", axial_force},
                           {"axial_force_over_euler", force},
                           {"deflection_over_L", deflection},
                           {"elastica_load_over_euler",

@@ -42,7 +42,7 @@ public:
 
   /// Incompressible closed form p(la) of the pressure at inner hoop stretch la:
   ///   p = 2G [(1/lb - 1/la) + (lb^-4 - la^-4)/4],  lb^3 = 1 + (la^3 - 1)(A/B)^3,
-  /// from integrating dsigma_rr/dr = 2(sigma_rr - sigma_tt)/r across the wall.
+  /// from integrating dsigma_rr/dr = 2(sigma_tt - sigma_rr)/r across the wall.
   static double closed_form_pressure(const ShellParameters& p, double la);
 
   /// The maximum of closed_form_pressure: (stretch, pressure).

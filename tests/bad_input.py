@@ -1,10 +1,21 @@
-"""Bad input ends with one clear line on stderr and a non-zero exit; a run that diverges with
-cut-back disabled exits non-zero and keeps its completed steps readable.
+"""Bad input to a scene ends with exactly one line 'gelx-SCENE: error: ...' on stderr, exit code 1
+and no output folder; a run that fails after it started writing keeps its completed steps and
+says "failed: ..." in summary.json; a valid --scene file is accepted and its values reach
+summary.json.
 
-usage: bad_input.py SCENE_BINARY WORK_DIR
+Every real parameter that `--help` lists is given nan, inf and -inf, every integer one an
+overflow and a fraction, every flag a non-boolean, so a newly declared parameter is covered
+without editing this file. With MPIEXEC, the errors raised after MPI start-up are also run at
+2 ranks: rank 0 alone reports them and no rank is left waiting in a collective.
+
+usage: bad_input.py SCENE SCENE_BINARY WORK_DIR [MPIEXEC]
 """
+import concurrent.futures
+import csv
 import json
 import pathlib
+import re
+import shutil
 import subprocess
 import sys
 
@@ -12,45 +23,251 @@ import h5py
 
 from checks import Checks
 
-binary, work = sys.argv[1], pathlib.Path(sys.argv[2])
+scene, binary, work = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
+mpiexec = sys.argv[4] if len(sys.argv) > 4 else None
 work.mkdir(parents=True, exist_ok=True)
 checks = Checks()
-quick = ["--h", "0.5", "-newton_monitor", "0"]
+error_prefix = f"gelx-{scene}: error: "
+serial = scene == "flory_rehner"  # no MPI, no PETSc
+
+# Each scene's own refusals: (case name, arguments, what the error line must say). The cases
+# named in TWO_RANKS are raised after MPI start-up and are repeated at 2 ranks.
+CASES = {
+    "block": [
+        ("missing_mesh", ["--mesh", str(work / "no-such.geo")], "not found"),
+        ("negative_modulus", ["--G", "-1"], "must be positive"),
+        ("stretch_not_a_number", ["--stretch", "long"], "is not a finite number"),
+        ("dt_above_dt_max", ["--dt", "0.5", "--dt_max", "0.25"], "dt_min <= dt <= dt_max"),
+    ],
+    "pyramid": [
+        ("W_equal_L", ["--W", "8", "--L", "8"], "W must exceed the pyramid width L"),
+        ("W_below_L", ["--W", "4"], "W must exceed the pyramid width L"),
+        ("t_zero", ["--t", "0"], "'t' = 0: must be positive"),
+        ("t_negative", ["--t", "-1"], "'t' = -1: must be positive"),
+        ("cells_zero", ["--cells", "0"], "'cells' = 0: must be at least 1"),
+        ("d_max_zero", ["--d_max", "0"], "'d_max' = 0: must be in (0, 1)"),
+        ("d_max_one", ["--d_max", "1"], "'d_max' = 1: must be in (0, 1)"),
+        ("unknown_law", ["--law", "ogden"], "'law' = ogden: must be nh, mr or le"),
+    ],
+    "inflation": [
+        ("B_equal_A", ["--B", "1"], "B must exceed the inner radius A"),
+        ("B_below_A", ["--A", "2", "--B", "1.5"], "B must exceed the inner radius A"),
+        ("K_zero", ["--K", "0"], "'K' = 0: must be positive"),
+        ("K_negative", ["--K", "-5"], "'K' = -5: must be positive"),
+    ],
+    "buckling": [
+        ("ty_equal_tx", ["--ty", "1"], "the depth ty must exceed the width tx"),
+        ("ty_below_tx", ["--tx", "2", "--ty", "1.5"], "the depth ty must exceed the width tx"),
+        ("nu_half", ["--nu", "0.5"], "'nu' = 0.5: must be in (-1, 0.5)"),
+        ("nu_minus_one", ["--nu", "-1"], "'nu' = -1: must be in (-1, 0.5)"),
+    ],
+    "fiber_gel": [
+        ("phi_i_one", ["--phi_i", "1"], "must lie in (0, 1)"),
+        ("phi_f_beyond_one", ["--phi_i", "0.6"], "phi_i / alpha0^3 must stay below 1"),
+        ("negative_diameter", ["--d", "-10"], "must be positive"),
+        ("negative_mesh_size", ["--h_fiber", "-1"], "must be positive"),
+        ("cell_narrower_than_fiber", ["--D", "10"], "D must exceed the fiber diameter d"),
+        ("fiber_longer_than_cell", ["--l", "40", "--L", "30"], "l must lie in [d, L]"),
+        ("full_cell_with_rod", ["--cell", "full"], "needs a fiber shorter than the cell"),
+        ("order_three", ["--order", "3"], "must be 1 or 2"),
+    ],
+    "flory_rehner": [
+        ("negative_n_nu_vm", ["--n_nu_vm", "-0.1"], "every value must be positive"),
+        ("nan_in_n_nu_vm", ["--n_nu_vm", "0.1,nan"], "every value must be positive"),
+        ("garbage_in_n_nu_vm", ["--n_nu_vm", "0.1x"], "comma-separated list of numbers"),
+        ("phi_i_max_one", ["--phi_i_max", "1.0"], "must lie in (0, 1)"),
+        ("phi_f_beyond_one", ["--alpha0", "0.77"], "must stay below alpha0^3"),
+        ("grid_min_above_max", ["--eps_min", "0.5", "--eps_max", "0.2"], "min < max"),
+        ("one_peo_value", ["--peo_chi_A", "0.5"], "needs all seven"),
+    ],
+}
+TWO_RANKS = {"block": ["missing_mesh", "dt_above_dt_max"], "pyramid": ["W_below_L"],
+             "inflation": ["B_equal_A"], "buckling": ["ty_equal_tx"],
+             "fiber_gel": ["cell_narrower_than_fiber", "phi_f_beyond_one"]}
+
+# A valid scene file per scene (values other than the defaults, for a run of a few seconds),
+# with the status its run must end in. The buckling run stops after max_steps on its straight
+# path, before the bifurcation: the run failure this scene can be asked for.
+SCENE_FILES = {
+    "block": ({"h": "0.5", "stretch": "1.3", "twist": "45", "degree": "1"}, "completed"),
+    "pyramid": ({"cells": "1", "tip_levels": "1", "d_max": "0.1", "dt": "0.25", "dt_max": "0.5",
+                 "extrapolate": "false"}, "completed"),
+    "inflation": ({"h": "0.25", "descend_to": "0.99"}, "completed"),
+    "buckling": ({"max_steps": "3", "modes": "2"}, "failed: no bifurcation found"),
+    "fiber_gel": ({"l": "20", "L": "35", "D": "25", "h_fiber": "3", "h_far": "8"}, "completed"),
+    "flory_rehner": ({"n_phi": "20", "n_eps": "11", "n_nu_vm": "0.01", "peo_n_grid": "5",
+                      "alpha0": "0.77", "phi_i_max": "0.45"}, "completed"),
+}
 
 
-def run(name, args, expect):
-    out = work / name
-    p = subprocess.run([binary, "--output", str(out)] + quick + args, capture_output=True,
-                       text=True, timeout=600)
-    lines = p.stderr.strip().splitlines()
-    checks.require(f"{name}: exit code {p.returncode}, stderr {lines!r}",
-                   p.returncode != 0 and len(lines) == 1
-                   and lines[0].startswith("gelx-block: error:") and expect in lines[0])
-    return out
+def run(args, ranks=1, timeout=120):
+    """Run the scene; None if it does not end within `timeout` seconds (a rank left waiting)."""
+    command = ([mpiexec, "-q", "-np", str(ranks)] if ranks > 1 else []) + [binary] + args
+    try:
+        return subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return None
 
 
-garbled = work / "garbled.scene"
-garbled.write_text("G = 1\nthis line has no equals sign\n")
-run("missing_mesh", ["--mesh", str(work / "no-such.geo")], "not found")
-run("negative_modulus", ["--G", "-1"], "must be positive")
-run("unknown_option", ["--stiffness", "3"], "unknown parameter 'stiffness'")
-run("missing_scene_file", ["--scene", str(work / "no-such.scene")], "cannot read scene file")
-run("garbled_scene_file", ["--scene", str(garbled)], "expected 'name = value'")
-run("stretch_not_a_number", ["--stretch", "long"], "is not a number")
+def one_error_line(what, p, expect, ranks=1):
+    """Exit code exactly 1 and one stderr line naming the scene and containing `expect`."""
+    if p is None:
+        checks.require(f"{what} at {ranks} rank(s): no end within the time limit", False)
+        return
+    lines = p.stderr.splitlines()
+    checks.require(f"{what} at {ranks} rank(s): exit code {p.returncode}, stderr {lines!r}",
+                   p.returncode == 1 and len(lines) == 1 and lines[0].startswith(error_prefix)
+                   and expect in lines[0])
 
-# Divergence: a first small step, then a jump to the full load that 4 Newton iterations cannot
-# reach, with cut-back disabled.
-out = run("forced_divergence", ["--dt", "0.05", "--dt_grow", "20", "--dt_max", "1",
-                                "--max_cutbacks", "0", "-newton_max_it", "4"], "failed")
-summary = json.loads((out / "summary.json").read_text())
-checks.require(f"forced_divergence: summary status {summary['status'][:40]!r}..., "
-               f"{summary['steps']} completed step", summary["status"].startswith("failed")
-               and summary["steps"] == 1)
-with h5py.File(out / "fields.h5", "r") as h5:
-    n = len(h5["Function/displacement"])
-    u = h5["Function/displacement"][list(h5["Function/displacement"])[0]][:]
-checks.require(f"forced_divergence: fields.h5 readable with {n} displacement step of shape "
-               f"{u.shape}", n == 1 and u.shape[1] == 3)
-rows = (out / "steps.csv").read_text().strip().splitlines()
-checks.require(f"forced_divergence: steps.csv has {len(rows) - 1} data row", len(rows) == 2)
+
+def refuse(cases, ranks=1):
+    """Input errors: one error line, exit code 1, and no output folder. The runs go four at a
+    time: each spends about half its wall time waiting for MPI start-up."""
+    def attempt(case):
+        name, args, expect = case
+        out = work / f"{name}_np{ranks}"
+        shutil.rmtree(out, ignore_errors=True)
+        return run(["--output", str(out)] + args, ranks), out
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
+        results = list(pool.map(attempt, cases))
+    for (name, _, expect), (p, out) in zip(cases, results):
+        one_error_line(name, p, expect, ranks)
+        checks.require(f"{name} at {ranks} rank(s): output folder "
+                       f"{'created' if out.exists() else 'not created'}", not out.exists())
+
+
+def parameters_from_help():
+    """name -> (kind, default) from the --help lines '  --name  default  kind  help'."""
+    p = run(["--help"])
+    lines = [line for line in p.stdout.splitlines() if line.startswith("  --")]
+    table = {}
+    for line in lines:
+        m = re.match(r"  --(\S+) +(\S+) +(real|integer|flag|text) ", line)
+        if m:
+            table[m[1]] = (m[3], m[2])
+    checks.require(f"--help: exit code {p.returncode}, {len(lines)} parameters listed, "
+                   f"{len(table)} read with their kind",
+                   p.returncode == 0 and len(lines) > 0 and len(table) == len(lines))
+    return table
+
+
+def read_summary(folder):
+    path = folder / "summary.json"
+    return json.loads(path.read_text()) if path.exists() else {}
+
+
+def typed(kind, text):
+    return {"real": float, "integer": int, "flag": lambda t: t == "true", "text": str}[kind](text)
+
+
+# 1. Every parameter the scene declares, given a value of the wrong kind
+parameters = parameters_from_help()
+reals = [n for n, (kind, _) in parameters.items() if kind == "real"]
+integers = [n for n, (kind, _) in parameters.items() if kind == "integer"]
+flags = [n for n, (kind, _) in parameters.items() if kind == "flag"]
+print(f"real parameters: {' '.join(reals)}")
+cases = [(f"{n}_{v.replace('-', 'minus_')}", [f"--{n}", v], f"'{n}': '{v}' is not a finite number")
+         for n in reals for v in ["nan", "inf", "-inf"]]
+cases += [(f"{n}_{label}", [f"--{n}", v], f"'{n}': '{v}' is not an integer")
+          for n in integers for label, v in [("overflow", "99999999999"), ("fraction", "2.5")]]
+cases += [(f"{n}_not_boolean", [f"--{n}", "maybe"], f"'{n}': 'maybe' is not true or false")
+          for n in flags]
+
+# 2. The same through the scene file, and the ways a command line or scene file goes wrong
+first = reals[0]
+nan_file, garbled_file = work / "nan.scene", work / "garbled.scene"
+nan_file.write_text(f"# a scene file\n{first} = nan\n")
+garbled_file.write_text(f"{first} = {parameters[first][1]}\nthis line has no equals sign\n")
+cases += [
+    ("trailing_garbage", [f"--{first}", "1.5x"], f"'{first}': '1.5x' is not a finite number"),
+    ("real_overflow", [f"--{first}", "1e999"], f"'{first}': '1e999' is not a finite number"),
+    ("nan_in_scene_file", ["--scene", str(nan_file)], f"'{first}': 'nan' is not a finite number"),
+    ("missing_value", [f"--{first}"], f"option --{first} needs a value"),
+    ("unknown_option", ["--stiffness", "3"], "unknown parameter 'stiffness'"),
+    ("stray_argument", ["stray"], "unexpected argument 'stray'"),
+    ("missing_scene_file", ["--scene", str(work / "no-such.scene")], "cannot read scene file"),
+    ("garbled_scene_file", ["--scene", str(garbled_file)],
+     f"{garbled_file}:2: expected 'name = value'"),
+]
+refuse(cases + CASES[scene])
+
+# 3. At 2 ranks: a parse error, and the scene's errors raised after MPI start-up
+if mpiexec and not serial:
+    refuse([(f"{first}_nan", [f"--{first}", "nan"], "is not a finite number")]
+           + [c for c in CASES[scene] if c[0] in TWO_RANKS[scene]], ranks=2)
+
+# 4. A valid scene file: its values reach summary.json
+values, status = SCENE_FILES[scene]
+scene_file = work / "valid.scene"
+scene_file.write_text("# a short run\n" + "".join(f"{k} = {v}  # not the default\n"
+                                                  for k, v in values.items()))
+out = work / "valid_scene_file"
+shutil.rmtree(out, ignore_errors=True)
+quiet = [] if serial else ["-newton_monitor", "0"]
+p = run(["--scene", str(scene_file), "--output", str(out)] + quiet, timeout=600)
+if status == "completed":
+    checks.require(f"valid scene file: exit code {p and p.returncode}, stderr "
+                   f"{p and p.stderr.splitlines()!r}", p and p.returncode == 0 and p.stderr == "")
+else:
+    one_error_line("valid scene file, run failure", p, status[len("failed: "):])
+summary = read_summary(out)
+checks.require(f"valid scene file: summary status {summary.get('status')!r} "
+               f"(expected {status!r}...)", summary.get("status", "").startswith(status))
+for name, text in values.items():
+    kind, default = parameters[name]
+    value = summary.get("parameters", {}).get(name)
+    checks.require(f"valid scene file: summary parameter {name} = {value!r} (file {text}, "
+                   f"default {default})",
+                   value == typed(kind, text) and typed(kind, default) != typed(kind, text))
+
+# 5. Run failures after the output was started: the completed steps stay readable
+if scene == "buckling":
+    # steps.csv keeps the max_steps points of the straight path, all below the critical load
+    # (eigenvalues.csv), which is why the path found no bifurcation
+    with open(out / "steps.csv") as f:
+        rows = list(csv.DictReader(f))
+    with open(out / "eigenvalues.csv") as f:
+        critical = float(next(csv.DictReader(f))["critical_load_over_euler"])
+    loads = [float(r["load_factor"]) for r in rows]
+    checks.require(f"no bifurcation: steps.csv holds {len(rows)} points on paths "
+                   f"{sorted({r['path'] for r in rows})}, loads {loads} rising and below the "
+                   f"critical load {critical:.6g} (max_steps {values['max_steps']})",
+                   len(rows) == int(values["max_steps"])
+                   and all(r["path"] == "straight" for r in rows)
+                   and all(a < b for a, b in zip(loads, loads[1:])) and loads[-1] < critical)
+    checks.require(f"no bifurcation: summary records {summary.get('arclength_steps')} path "
+                   f"steps", summary.get("arclength_steps") == len(rows))
+
+if scene == "block":
+    # Divergence: a first small step, then a jump to the full load that 4 Newton iterations
+    # cannot reach, with cut-back disabled
+    out = work / "forced_divergence"
+    p = run(["--output", str(out), "--h", "0.5", "-newton_monitor", "0", "--dt", "0.05",
+             "--dt_grow", "20", "--dt_max", "1", "--max_cutbacks", "0", "-newton_max_it", "4"],
+            timeout=600)
+    one_error_line("forced_divergence", p, "(results of the completed steps are kept)")
+    summary = read_summary(out)
+    checks.require(f"forced_divergence: summary status {summary.get('status', '')[:40]!r}..., "
+                   f"{summary.get('steps')} completed step",
+                   summary.get("status", "").startswith("failed: ") and summary["steps"] == 1)
+    with h5py.File(out / "fields.h5", "r") as h5:
+        n = len(h5["Function/displacement"])
+        u = h5["Function/displacement"][list(h5["Function/displacement"])[0]][:]
+    checks.require(f"forced_divergence: fields.h5 readable with {n} displacement step of shape "
+                   f"{u.shape}", n == 1 and u.shape[1] == 3)
+    rows = (out / "steps.csv").read_text().strip().splitlines()
+    checks.require(f"forced_divergence: steps.csv has {len(rows) - 1} data row", len(rows) == 2)
+
+if scene == "flory_rehner":
+    # N nu / V_m = 1e300 has no swollen state in (0, 1): the first map fails after the folder
+    # was made
+    out = work / "no_root"
+    shutil.rmtree(out, ignore_errors=True)
+    p = run(["--output", str(out), "--n_nu_vm", "1e300", "--n_phi", "5", "--n_eps", "5"])
+    one_error_line("no_root", p, "no root in (0, 1)")
+    summary = read_summary(out)
+    checks.require(f"no_root: summary status {summary.get('status')!r}",
+                   summary.get("status", "").startswith("failed: ")
+                   and "no root" in summary.get("status", ""))
 checks.finish()

@@ -1,5 +1,6 @@
 #include "parameters.h"
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -36,6 +37,13 @@ std::string to_text(const Parameters::Value& v)
       v);
 }
 
+/// The kind of a value as --help names it (the index order of Parameters::Value)
+const char* kind_name(const Parameters::Value& v)
+{
+  static const char* names[] = {"real", "integer", "flag", "text"};
+  return names[v.index()];
+}
+
 /// Parse `text` as the same type as `like`; throws InputError naming the parameter.
 Parameters::Value parse_as(const Parameters::Value& like, const std::string& name,
                            const std::string& text)
@@ -49,7 +57,8 @@ Parameters::Value parse_as(const Parameters::Value& like, const std::string& nam
     case 0:
     {
       double v = std::stod(text, &used);
-      if (used != text.size())
+      // std::stod also reads "nan" and "inf", which no parameter means
+      if (used != text.size() || !std::isfinite(v))
         throw std::invalid_argument("");
       return v;
     }
@@ -72,7 +81,7 @@ Parameters::Value parse_as(const Parameters::Value& like, const std::string& nam
   }
   catch (const std::logic_error&)
   {
-    static const char* kinds[] = {"a number", "an integer", "true or false", "text"};
+    static const char* kinds[] = {"a finite number", "an integer", "true or false", "text"};
     throw InputError(bad + kinds[like.index()]);
   }
 }
@@ -144,6 +153,7 @@ std::vector<std::string> Parameters::parse(int argc, char* argv[], bool* help_re
   std::vector<std::string> rest = {argv[0]};
   if (help_requested)
     *help_requested = false;
+  bool petsc_value_may_follow = false; // right after a PETSc option "-name"
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -155,9 +165,14 @@ std::vector<std::string> Parameters::parse(int argc, char* argv[], bool* help_re
     }
     if (arg.rfind("--", 0) != 0)
     {
-      rest.push_back(arg); // a PETSc option or its value
+      // A PETSc option or its value; any other word would be silently ignored by PETSc
+      if (arg.rfind("-", 0) != 0 && !petsc_value_may_follow)
+        throw InputError("unexpected argument '" + arg + "'");
+      petsc_value_may_follow = arg.rfind("-", 0) == 0;
+      rest.push_back(arg);
       continue;
     }
+    petsc_value_may_follow = false;
     std::string name = arg.substr(2), value;
     if (auto eq = name.find('='); eq != std::string::npos)
     {
@@ -167,11 +182,11 @@ std::vector<std::string> Parameters::parse(int argc, char* argv[], bool* help_re
     else
     {
       const bool is_flag = _entries.count(name) && _entries.at(name).value.index() == 2;
-      const bool has_value = i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0;
-      if (is_flag && !(has_value && (std::string(argv[i + 1]) == "true"
-                                     || std::string(argv[i + 1]) == "false")))
+      const std::string next = i + 1 < argc ? argv[i + 1] : "";
+      // A flag alone means true; a value may be negative ("--G -1") but not an option
+      if (is_flag && (i + 1 == argc || next.rfind("-", 0) == 0))
         value = "true";
-      else if (has_value)
+      else if (i + 1 < argc && next.rfind("--", 0) != 0)
         value = argv[++i];
       else
         throw InputError("option --" + name + " needs a value");
@@ -242,7 +257,7 @@ std::string Parameters::table(bool with_help) const
       const Entry& e = _entries.at(name);
       out << "  --" << std::left << std::setw(22) << name << std::setw(value_width) << to_text(e.value);
       if (with_help)
-        out << e.help;
+        out << std::setw(9) << kind_name(e.value) << e.help;
       out << "\n";
     }
   }

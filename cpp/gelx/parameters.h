@@ -42,8 +42,9 @@ public:
            const std::string& help,
            std::function<std::string(const std::string&)> valid = nullptr);
 
-  /// Read `--name value` pairs and `--scene FILE`; `--help` prints the table and returns false.
-  /// Returns the remaining arguments (PETSc options), argv[0] first. Throws InputError.
+  /// Read `--name value` pairs and `--scene FILE`; `--help` sets `help_requested`. Returns the
+  /// remaining arguments (PETSc options `-name [value]`), argv[0] first. Throws InputError,
+  /// also for a word that is neither (PETSc would ignore it silently).
   std::vector<std::string> parse(int argc, char* argv[], bool* help_requested = nullptr);
 
   /// Read `name = value` lines (`#` starts a comment). Throws InputError.
@@ -57,7 +58,8 @@ public:
   bool flag(const std::string& name) const;
   const std::string& text(const std::string& name) const;
 
-  /// Table of all parameters grouped by section, for the start-up echo and --help.
+  /// Table of all parameters grouped by section, for the start-up echo and (with each kind,
+  /// real, integer, flag or text, and help text) for --help.
   std::string table(bool with_help) const;
   nlohmann::json to_json() const;
 

@@ -142,78 +142,91 @@ int main(int argc, char* argv[])
     // ~1e2 on the default mesh)
     const std::map<std::string, std::string> buckled = {{"ds", "1"}, {"ds_max", "40"}};
 
-    // 3. The perfect column along its straight path. Steps of at most 0.1 Euler loads, with the
-    //    load weighed into the constraint (psi = 1) since the straight column barely moves; the
-    //    tangent's eigenvalue nearest zero is computed at every point.
-    auto straight = continuation(
-        "straight_arclength_", {{"psi", "1"}, {"ds", "0.1"}, {"ds_max", "0.1"}, {"stability", "1"}});
-    double lambda_stable = 0, lambda_unstable = NAN;
-    step_start = clock::now();
-    straight->run(0.0, max_steps,
-                 [&](const gelx::PathPoint& pt)
-                 {
-                   record("straight", pt);
-                   (pt.bifurcation ? lambda_unstable : lambda_stable) = pt.load_factor;
-                 },
-                 [](const gelx::PathPoint& pt) { return pt.bifurcation || pt.limit_point; });
-    if (std::isnan(lambda_unstable))
-      throw gelx::ConvergenceError("no bifurcation found on the straight path up to "
-                                   + std::to_string(lambda_stable) + " Euler loads");
-
-    // 4. Branch switching: leave along the critical mode and follow the buckled branch
-    auto branch = continuation("branch_arclength_", buckled);
-    const double stability_at_switch = branch->switch_branch();
-    double branch_deflection = 0, branch_load = NAN;
-    step_start = clock::now();
-    branch->run(lambda_unstable, max_steps,
-               [&](const gelx::PathPoint& pt)
-               {
-                 std::tie(branch_deflection, branch_load) = record("branch", pt);
-                 displacement.update();
-                 branch_writer.write_fields(pt.step, {displacement.function()});
-               },
-               [&](const gelx::PathPoint&) { return branch_deflection >= max_deflection; });
-
-    // 5. The imperfect column: mode 1 seeded into the geometry, from the unloaded state
+    // What the paths reached, for the summary; a path that fails keeps them as they were and its
+    // completed points in steps.csv
+    double lambda_stable = 0, lambda_unstable = NAN, stability_at_switch = NAN;
+    double branch_deflection = 0, branch_load = NAN, imperfect_deflection = 0, imperfect_load = NAN;
     const double amplitude = prm.real("imperfection") * p.tx;
-    gelx::seed_imperfection(*column.mesh().mesh, {modes.at(0)}, {amplitude});
-    column.displacement()->x()->set(0.0);
-    column.set_load_factor(0.0);
-    auto imperfect = continuation("imperfect_arclength_", buckled);
-    double imperfect_deflection = 0, imperfect_load = NAN;
-    step_start = clock::now();
-    imperfect->run(0.0, max_steps,
-                  [&](const gelx::PathPoint& pt)
-                  {
-                    std::tie(imperfect_deflection, imperfect_load) = record("imperfect", pt);
-                  },
-                  [&](const gelx::PathPoint&) { return imperfect_deflection >= max_deflection; });
-
-    // 6. Summary: critical loads against Euler, the paths' ends against the elastica
     std::vector<double> critical;
     for (const auto& m : modes)
       critical.push_back(m.load_factor);
     const double P_cr = modes[0].load_factor;
-    writer.write_summary(
-        "buckling", "completed", prm,
-        {{"num_dofs",
-          column.displacement()->function_space()->dofmap()->index_map->size_global() * 3},
-         {"slenderness", column.slenderness()},
-         {"euler_load", column.euler_load()},
-         {"critical_loads_over_euler", critical},
-         {"critical_load_over_euler", P_cr},
-         {"bifurcation_bracket", {lambda_stable, lambda_unstable}},
-         {"stability_at_switch", stability_at_switch},
-         {"branch_deflection_over_L", branch_deflection},
-         {"branch_load_over_critical", branch_load / P_cr},
-         {"elastica_at_branch_end", column.elastica_load_ratio(branch_deflection)},
-         {"imperfection_amplitude", amplitude},
-         {"imperfect_deflection_over_L", imperfect_deflection},
-         {"imperfect_load_over_critical", imperfect_load / P_cr},
-         {"elastica_at_imperfect_end", column.elastica_load_ratio(imperfect_deflection)},
-         {"eigen_time", eigen_time},
-         {"arclength_steps", path_steps},
-         {"corrector_iterations_per_step", double(corrector_iterations) / path_steps},
-         {"time_per_arclength_step", path_time / path_steps}});
+    auto summary = [&](const std::string& status)
+    {
+      writer.write_summary(
+          "buckling", status, prm,
+          {{"num_dofs",
+            column.displacement()->function_space()->dofmap()->index_map->size_global() * 3},
+           {"slenderness", column.slenderness()},
+           {"euler_load", column.euler_load()},
+           {"critical_loads_over_euler", critical},
+           {"critical_load_over_euler", P_cr},
+           {"bifurcation_bracket", {lambda_stable, lambda_unstable}},
+           {"stability_at_switch", stability_at_switch},
+           {"branch_deflection_over_L", branch_deflection},
+           {"branch_load_over_critical", branch_load / P_cr},
+           {"elastica_at_branch_end", column.elastica_load_ratio(branch_deflection)},
+           {"imperfection_amplitude", amplitude},
+           {"imperfect_deflection_over_L", imperfect_deflection},
+           {"imperfect_load_over_critical", imperfect_load / P_cr},
+           {"elastica_at_imperfect_end", column.elastica_load_ratio(imperfect_deflection)},
+           {"eigen_time", eigen_time},
+           {"arclength_steps", path_steps},
+           {"corrector_iterations_per_step", double(corrector_iterations) / path_steps},
+           {"time_per_arclength_step", path_time / path_steps}});
+    };
+
+    try
+    {
+      // 3. The perfect column along its straight path. Steps of at most 0.1 Euler loads, with
+      //    the load weighed into the constraint (psi = 1) since the straight column barely
+      //    moves; the tangent's eigenvalue nearest zero is computed at every point.
+      auto straight = continuation("straight_arclength_", {{"psi", "1"}, {"ds", "0.1"},
+                                                           {"ds_max", "0.1"}, {"stability", "1"}});
+      step_start = clock::now();
+      straight->run(0.0, max_steps,
+                    [&](const gelx::PathPoint& pt)
+                    {
+                      record("straight", pt);
+                      (pt.bifurcation ? lambda_unstable : lambda_stable) = pt.load_factor;
+                    },
+                    [](const gelx::PathPoint& pt) { return pt.bifurcation || pt.limit_point; });
+      if (std::isnan(lambda_unstable))
+        throw gelx::ConvergenceError("no bifurcation found on the straight path up to "
+                                     + std::to_string(lambda_stable) + " Euler loads");
+
+      // 4. Branch switching: leave along the critical mode and follow the buckled branch
+      auto branch = continuation("branch_arclength_", buckled);
+      stability_at_switch = branch->switch_branch();
+      step_start = clock::now();
+      branch->run(lambda_unstable, max_steps,
+                  [&](const gelx::PathPoint& pt)
+                  {
+                    std::tie(branch_deflection, branch_load) = record("branch", pt);
+                    displacement.update();
+                    branch_writer.write_fields(pt.step, {displacement.function()});
+                  },
+                  [&](const gelx::PathPoint&) { return branch_deflection >= max_deflection; });
+
+      // 5. The imperfect column: mode 1 seeded into the geometry, from the unloaded state
+      gelx::seed_imperfection(*column.mesh().mesh, {modes.at(0)}, {amplitude});
+      column.displacement()->x()->set(0.0);
+      column.set_load_factor(0.0);
+      auto imperfect = continuation("imperfect_arclength_", buckled);
+      step_start = clock::now();
+      imperfect->run(
+          0.0, max_steps,
+          [&](const gelx::PathPoint& pt)
+          { std::tie(imperfect_deflection, imperfect_load) = record("imperfect", pt); },
+          [&](const gelx::PathPoint&) { return imperfect_deflection >= max_deflection; });
+    }
+    catch (const gelx::ConvergenceError& e)
+    {
+      summary(std::string("failed: ") + e.what());
+      throw;
+    }
+
+    // 6. Summary: critical loads against Euler, the paths' ends against the elastica
+    summary("completed");
   });
 }

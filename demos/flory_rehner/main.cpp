@@ -4,7 +4,7 @@
 // Sample runs:
 //   build/demos/flory_rehner/gelx-flory_rehner --output results/flory_rehner
 //   build/demos/flory_rehner/gelx-flory_rehner --output /tmp/fr --n_phi 40 --n_eps 40
-//   build/demos/flory_rehner/gelx-flory_rehner --output /tmp/fr --n_nu_vm 0.01 --alpha0 0.77
+//   build/demos/flory_rehner/gelx-flory_rehner --output /tmp/fr --n_nu_vm 0.01 --alpha0 0.77 --phi_i_max 0.45
 //   build/demos/flory_rehner/gelx-flory_rehner --output /tmp/fr --scene peo.scene   (PEO values)
 //   /usr/bin/python3 demos/flory_rehner/plot.py results/flory_rehner
 //
@@ -45,6 +45,8 @@ std::vector<double> parse_list(const std::string& text)
   {
     std::size_t used = 0;
     double x = std::stod(item, &used);
+    if (item.find_first_not_of(" \t", used) != std::string::npos)
+      throw std::invalid_argument("trailing characters in '" + item + "'");
     v.push_back(x);
   }
   return v;
@@ -100,6 +102,9 @@ json run_map(double n, double a0, const std::vector<double>& phi, const std::vec
 
 int main(int argc, char* argv[])
 {
+  // Once the output folder exists, a failure is recorded in its summary.json too
+  std::filesystem::path out;
+  json summary;
   try
   {
     // 1. Declare the parameters, grouped by concern.
@@ -148,6 +153,9 @@ int main(int argc, char* argv[])
     const double a0 = prm.real("alpha0");
     if (prm.real("phi_i_min") >= prm.real("phi_i_max") || prm.real("eps_min") >= prm.real("eps_max"))
       throw gelx::InputError("grid ranges must have min < max");
+    if (std::max(prm.real("phi_i_max"), prm.real("peo_phi_i_max")) >= a0 * a0 * a0)
+      throw gelx::InputError("phi_i_max and peo_phi_i_max must stay below alpha0^3 (the "
+                             "contracted gel's phi_i / alpha0^3 below 1)");
     int peo_given = 0;
     for (const char* name : peo_names)
       peo_given += std::isfinite(prm.real(name));
@@ -155,9 +163,10 @@ int main(int argc, char* argv[])
       throw gelx::InputError("the PEO model needs all seven peo_chi_A ... peo_entropy_w values");
     std::cout << "gelx-flory_rehner: Flory-Rehner theory of thesis sections 4.2-4.3\n"
               << prm.table(false);
-    const std::filesystem::path out = prm.text("output");
+    out = prm.text("output");
     std::filesystem::create_directories(out);
-    json summary = {{"parameters", prm.to_json()}};
+    std::filesystem::remove(out / "summary.json"); // a previous run's must not pass for this one's
+    summary = {{"parameters", prm.to_json()}};
     const auto t_start = std::chrono::steady_clock::now();
 
     // 3. Fig. 4.2b: A_max(phi_i, eps_par) for each N nu/V_m.
@@ -216,19 +225,20 @@ int main(int argc, char* argv[])
     }
 
     // 7. Summary.
+    summary["status"] = "completed";
     summary["seconds_total"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
     std::ofstream(out / "summary.json") << summary.dump(2) << "\n";
     std::cout << "gelx-flory_rehner: results in " << out.string() << "\n";
     return 0;
   }
-  catch (const gelx::InputError& e)
-  {
-    std::cerr << "gelx-flory_rehner: error: " << e.what() << "\n";
-    return 1;
-  }
   catch (const std::exception& e)
   {
     std::cerr << "gelx-flory_rehner: error: " << e.what() << "\n";
+    if (!out.empty())
+    {
+      summary["status"] = std::string("failed: ") + e.what(); // the maps written so far stay
+      std::ofstream(out / "summary.json") << summary.dump(2) << "\n";
+    }
     return 1;
   }
 }

@@ -19,7 +19,7 @@ def run_scene(build, scene, folder, ranks, options, reuse=False):
             and json.loads(summary_file.read_text())["status"] == "completed"):
         exe = build / "demos" / scene / f"gelx-{scene}"
         subprocess.run(["mpirun", "-np", str(ranks), str(exe), "--output", str(folder),
-                        "-newton_monitor", "0", *options],
+                        *options],
                        check=True, stdout=subprocess.DEVNULL, env=MPI_ENV)
     return json.loads(summary_file.read_text())
 

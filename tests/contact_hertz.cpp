@@ -25,6 +25,7 @@
 #include <gelx/boundary.h>
 #include <gelx/contact.h>
 #include <gelx/load_stepping.h>
+#include <gelx/problem.h>
 #include <gelx/mesh.h>
 #include <gelx/mixed.h>
 #include <gelx/petsc_utils.h>
@@ -81,7 +82,7 @@ Pressed press(MPI_Comm comm, double h_contact, int quarters)
   Pressed p;
   gelx::LoadStepper(contact, newton, steps, [&](double t) { contact.set_position(t * d_max); })
       .run(
-          [&](const gelx::StepRecord& s)
+          [&](const gelx::StepRecord& s, gelx::PathState&)
           {
             ++p.steps;
             p.iterations += s.newton.iterations;
@@ -111,7 +112,6 @@ int main(int argc, char* argv[])
   {
     MPI_Comm comm = PETSC_COMM_WORLD;
     gelx::test::Checks checks(comm);
-    gelx::set_default_option("newton_", "monitor", "0");
     const double F_hertz = 16.0 / 3.0 * G * std::sqrt(R) * std::pow(d_max, 1.5);
     const double a_hertz = std::sqrt(R * d_max);
 

@@ -28,11 +28,11 @@ int main(int argc, char* argv[])
     {
       const std::string name = clamped_clamped ? "clamped-clamped" : "clamped-free";
       std::vector<double> errors;
-      for (std::array<std::size_t, 3> cells : {std::array<std::size_t, 3>{2, 3, 40}, {3, 4, 80}})
+      for (std::array<int, 3> cells : {std::array<int, 3>{2, 3, 40}, {3, 4, 80}})
       {
         gelx::scenes::ColumnParameters p;
         p.cells = cells;
-        p.clamped_clamped = clamped_clamped;
+        p.ends = name;
         gelx::scenes::EulerColumn column(comm, p);
         const auto modes = column.buckling_modes(2);
         const std::string level = name + ", mesh " + std::to_string(cells[0]) + "x"

@@ -4,7 +4,7 @@ the transverse contraction alpha_perp must approach that of the uniaxially const
 without prestrain (Eq. 4.10 and 4.14, phi_i = phi'_i = phi_c), computed here from the run's
 parameters (closed_forms.GelHeating).
 
-The contraction ratios are measured on the solution in fields.h5 at T_f, on the 1/8 cell
+The contraction ratios are measured on the solution in fields.xdmf at T_f, on the 1/8 cell
 [0, D/2]^2 x [0, L/2]: alpha = 1 + u_n / (edge) over the nodes of the outer faces z = L/2
 (alpha_par) and x = D/2 (alpha_perp).
 - alpha_par = 1 within 1e-12, and the end face's spread of alpha within 1e-12: the rod holds the

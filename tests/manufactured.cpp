@@ -16,6 +16,7 @@
 #include <dolfinx/fem/utils.h>
 #include <gelx/boundary.h>
 #include <gelx/load_stepping.h>
+#include <gelx/problem.h>
 #include <petscsys.h>
 
 using namespace dolfinx;
@@ -75,7 +76,7 @@ Errors solve(MPI_Comm comm, int degree, std::size_t n)
   gelx::LoadSteppingOptions one_step;
   one_step.dt = one_step.dt_max = 1.0; // |Grad u| <= 0.3: Newton converges in one step
   gelx::LoadStepper(problem, newton, one_step, [&](double t) { bcs.update(t); })
-      .run([](const gelx::StepRecord&) {});
+      .run();
   return {std::sqrt(gelx::assemble_global_scalar(*error_l2)),
           std::sqrt(gelx::assemble_global_scalar(*error_h1))};
 }

@@ -28,6 +28,7 @@
 #include <cstdio>
 #include <dolfinx/fem/utils.h>
 #include <gelx/newton.h>
+#include <gelx/problem.h>
 #include <stdexcept>
 #include <string>
 #include <vector>

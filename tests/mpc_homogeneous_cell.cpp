@@ -37,6 +37,7 @@
 #include <dolfinx/fem/utils.h>
 #include <gelx/constraints.h>
 #include <gelx/load_stepping.h>
+#include <gelx/problem.h>
 #include <gelx/mixed.h>
 #include <gelx/petsc_utils.h>
 #include <petscsys.h>
@@ -234,7 +235,7 @@ int solve(Cell& cell, const std::function<void(double)>& load)
   steps.dt_max = 0.5;
   int iterations = 0;
   gelx::LoadStepper(*cell.mpc, newton, steps, load)
-      .run([&](const gelx::StepRecord& s)
+      .run([&](const gelx::StepRecord& s, gelx::PathState&)
            { iterations = std::max(iterations, s.newton.iterations); });
   return iterations;
 }

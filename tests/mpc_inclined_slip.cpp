@@ -26,6 +26,7 @@
 #include <dolfinx/fem/utils.h>
 #include <gelx/constraints.h>
 #include <gelx/load_stepping.h>
+#include <gelx/problem.h>
 #include <gelx/mixed.h>
 #include <gelx/petsc_utils.h>
 #include <petscsys.h>
@@ -141,7 +142,7 @@ Solution solve(MPI_Comm comm, Element element, Variant variant)
                       if (top >= 0)
                         mpc.prescribe_macro(top, -t * d);
                     })
-      .run([](const gelx::StepRecord&) {});
+      .run();
 
   Solution s;
   auto u = element == Element::p2_p1 ? gelx::collapse_sub_function(*w, 0) : w;

@@ -28,6 +28,7 @@
 #include <dolfinx/fem/utils.h>
 #include <gelx/constraints.h>
 #include <gelx/load_stepping.h>
+#include <gelx/problem.h>
 #include <gelx/petsc_utils.h>
 #include <petscsys.h>
 #include <xtensor/xtensor.hpp>
@@ -154,7 +155,7 @@ void solve(Laminate& cell, const std::map<std::pair<int, int>, double>& prescrib
   gelx::LoadSteppingOptions steps;
   steps.dt = 0.5;
   steps.dt_max = 0.5;
-  gelx::LoadStepper(*cell.mpc, newton, steps, load).run([](const gelx::StepRecord&) {});
+  gelx::LoadStepper(*cell.mpc, newton, steps, load).run();
 }
 
 void small_strain(gelx::test::Checks& checks, MPI_Comm comm, Law law)

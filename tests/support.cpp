@@ -68,7 +68,6 @@ int run_checks(int argc, char* argv[],
   int status;
   {
     Checks checks(PETSC_COMM_WORLD);
-    gelx::set_default_option("newton_", "monitor", "0");
     checks_of(PETSC_COMM_WORLD, checks);
     status = checks.finish();
   }

@@ -63,7 +63,7 @@ private:
 };
 
 /// The body of a verification program: initialise PETSc and SLEPc, run `checks_of(comm, checks)` with
-/// the Newton monitor off by default, print the tally, finalise; returns the exit code.
+/// print the tally, finalise; returns the exit code.
 int run_checks(int argc, char* argv[],
                const std::function<void(MPI_Comm, Checks&)>& checks_of);
 

@@ -41,6 +41,7 @@
 #include <gelx/constraints.h>
 #include <gelx/contact.h>
 #include <gelx/load_stepping.h>
+#include <gelx/problem.h>
 #include <gelx/mesh.h>
 #include <gelx/mixed.h>
 #include <gelx/petsc_utils.h>
@@ -152,6 +153,12 @@ public:
   Vec create_vector() const override { return _system.create_vector(); }
   Mat create_matrix() const override { return _system.create_matrix(); }
   bool admissible() const override { return _system.admissible(); }
+  std::vector<PetscInt> prescribed_rows() const override { return _system.prescribed_rows(); }
+  gelx::NonlinearProblem& problem() override { return _system.problem(); }
+  const std::vector<PetscInt>& unknown_of_problem_dof() const override
+  {
+    return _system.unknown_of_problem_dof();
+  }
 
 private:
   gelx::NonlinearSystem& _system;
@@ -436,7 +443,7 @@ void contact(Checks& checks, MPI_Comm comm)
   steps.dt = steps.dt_max = 0.25;
   constexpr double d = 0.1;
   gelx::LoadStepper(contact, newton, steps, [&](double t) { contact.set_position(t * d); })
-      .run([](const gelx::StepRecord&) {});
+      .run();
   const gelx::ContactState state = contact.state();
 
   // The active set at the converged state; every perturbed state must have the same one

@@ -14,6 +14,7 @@
 #include <dolfinx/fem/utils.h>
 #include <gelx/boundary.h>
 #include <gelx/load_stepping.h>
+#include <gelx/problem.h>
 #include <gelx/output.h>
 #include <petscsys.h>
 
@@ -88,7 +89,7 @@ int main(int argc, char* argv[])
                                      expression(expression_block_det_F_p2));
       gelx::NewtonSolver newton(comm);
       gelx::LoadStepper stepper(problem, newton, {}, [&](double t) { bcs.update(t); });
-      stepper.run([](const gelx::StepRecord&) {});
+      stepper.run();
 
       const Uniaxial exact = closed_form(G, K, lambda);
       auto r = gelx::boundary_resultant(problem, *box.facets, gelx::test::z_max);

@@ -1,8 +1,9 @@
 #include "arclength.h"
-#include "load_stepping.h"
 #include "petsc_utils.h"
+#include "problem.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <dolfinx/common/MPI.h>
@@ -10,52 +11,391 @@
 
 namespace gelx
 {
-
-ArcLength::ArcLength(MPI_Comm comm, NonlinearProblem& problem,
-                     std::function<void(double)> set_load_factor, const std::string& prefix)
-    : _comm(comm), _problem(problem), _set_load(std::move(set_load_factor)), _prefix(prefix)
+namespace
 {
-  _ksp = create_linear_solver(comm, prefix);
-  _K = problem.create_matrix();
-  for (Vec* v : {&_R, &_f, &_a, &_b, &_du, &_du_prev, &_u0, &_tmp, &_branch})
-    *v = problem.create_vector();
+double dot(Vec a, Vec b)
+{
+  PetscScalar d;
+  GELX_PETSC(VecDot(a, b, &d));
+  return d;
 }
 
-ArcLength::~ArcLength()
+PetscErrorCode shell_mult(Mat A, Vec v, Vec y)
+{
+  void* ctx;
+  MatShellGetContext(A, &ctx);
+  try
+  {
+    static_cast<const ArcLengthSystem*>(ctx)->apply_tangent(v, y);
+  }
+  catch (...)
+  {
+    return PETSC_ERR_LIB;
+  }
+  return 0;
+}
+
+PetscErrorCode shell_apply(PC pc, Vec r, Vec z)
+{
+  void* ctx;
+  PCShellGetContext(pc, &ctx);
+  try
+  {
+    static_cast<const ArcLengthSystem*>(ctx)->apply_inverse(r, z);
+  }
+  catch (const ConvergenceError&) // K could not be solved: a failed linear solve, not an error
+  {
+    PCSetFailedReason(pc, PC_SUBPC_ERROR);
+    VecSetInf(z);
+  }
+  catch (...)
+  {
+    return PETSC_ERR_LIB;
+  }
+  return 0;
+}
+
+/// The SNES defaults of a continuation's corrector, set before the solver reads its options.
+const std::string& with_corrector_defaults(const std::string& prefix)
+{
+  set_default_option(prefix, "snes_max_it", "15");
+  // Full corrector steps: the bordered residual mixes forces and the arc-length condition, so a
+  // decrease test on its norm is no measure of progress (admissibility still halves steps)
+  set_default_option(prefix, "snes_linesearch_type", "basic");
+  return prefix;
+}
+} // namespace
+
+// --- The bordered system ------------------------------------------------------------------
+
+ArcLengthSystem::ArcLengthSystem(NonlinearSystem& inner, std::function<void(double)> set_load,
+                                 const std::string& prefix)
+    : _inner(inner), _set_load(std::move(set_load)),
+      _comm(PetscObjectComm((PetscObject)inner.unknowns()))
+{
+  _last_rank = dolfinx::MPI::rank(_comm) == dolfinx::MPI::size(_comm) - 1;
+  GELX_PETSC(VecGetLocalSize(inner.unknowns(), &_n));
+  GELX_PETSC(VecCreateMPI(_comm, _n + (_last_rank ? 1 : 0), PETSC_DETERMINE, &_x));
+  join(inner.unknowns(), 0.0, _x);
+  _K = inner.create_matrix();
+  _ksp = create_linear_solver(_comm, prefix);
+  for (Vec* v : {&_g, &_x0, &_f, &_b, &_work, &_work2})
+    *v = inner.create_vector();
+}
+
+ArcLengthSystem::~ArcLengthSystem()
 {
   KSPDestroy(&_ksp);
   MatDestroy(&_K);
-  for (Vec* v : {&_R, &_f, &_a, &_b, &_du, &_du_prev, &_u0, &_tmp, &_branch})
+  for (Vec* v : {&_x, &_g, &_x0, &_f, &_b, &_work, &_work2})
     VecDestroy(v);
 }
 
-void ArcLength::load_derivative(double lambda, Vec f)
+double ArcLengthSystem::split(Vec v, Vec x) const
 {
-  const double h = 1e-4 * std::max(1.0, std::abs(lambda));
-  _set_load(lambda + h);
-  _problem.residual(f);
-  _set_load(lambda - h);
-  _problem.residual(_tmp);
-  _set_load(lambda);
-  GELX_PETSC(VecAXPY(f, -1.0, _tmp));
+  const PetscScalar* from;
+  PetscScalar* to;
+  GELX_PETSC(VecGetArrayRead(v, &from));
+  GELX_PETSC(VecGetArray(x, &to));
+  std::copy_n(from, _n, to);
+  double lambda = _last_rank ? from[_n] : 0.0;
+  GELX_PETSC(VecRestoreArray(x, &to));
+  GELX_PETSC(VecRestoreArrayRead(v, &from));
+  MPI_Bcast(&lambda, 1, MPI_DOUBLE, dolfinx::MPI::size(_comm) - 1, _comm);
+  return lambda;
+}
+
+void ArcLengthSystem::join(Vec x, double lambda, Vec v) const
+{
+  const PetscScalar* from;
+  PetscScalar* to;
+  GELX_PETSC(VecGetArrayRead(x, &from));
+  GELX_PETSC(VecGetArray(v, &to));
+  std::copy_n(from, _n, to);
+  if (_last_rank)
+    to[_n] = lambda;
+  GELX_PETSC(VecRestoreArray(v, &to));
+  GELX_PETSC(VecRestoreArrayRead(x, &from));
+}
+
+void ArcLengthSystem::pack(Vec x, double lambda, Vec bordered) const { join(x, lambda, bordered); }
+
+void ArcLengthSystem::set_constraint(Vec x0, double l0, double ds, double psi)
+{
+  GELX_PETSC(VecCopy(x0, _x0));
+  _l0 = l0;
+  _ds = ds;
+  _psi = psi;
+}
+
+void ArcLengthSystem::unknowns_changed()
+{
+  _lambda = split(_x, _inner.unknowns());
+  _inner.unknowns_changed();
+  _set_load(_lambda);
+}
+
+void ArcLengthSystem::residual(Vec r)
+{
+  _inner.residual(_work);
+  GELX_PETSC(VecWAXPY(_work2, -1.0, _x0, _inner.unknowns()));
+  const double dl = _lambda - _l0;
+  const double c = (dot(_work2, _work2) + _psi * _psi * dl * dl - _ds * _ds) / (2 * _ds);
+  join(_work, c, r);
+}
+
+void ArcLengthSystem::load_derivative(Vec f)
+{
+  const double h = 1e-4 * std::max(1.0, std::abs(_lambda));
+  _set_load(_lambda + h);
+  _inner.residual(f);
+  _set_load(_lambda - h);
+  _inner.residual(_work2);
+  _set_load(_lambda);
+  GELX_PETSC(VecAXPY(f, -1.0, _work2));
   GELX_PETSC(VecScale(f, 1.0 / (2 * h)));
 }
 
-double ArcLength::switch_branch()
+void ArcLengthSystem::solve_tangent(Vec b, Vec y)
 {
-  _problem.tangent(_K);
-  const BucklingMode mode = lowest_tangent_eigenpair(_comm, _K, _problem.u()->function_space());
-  // The mode's owned entries, in the layout of the unknowns' vector
-  PetscInt n;
-  PetscScalar* direction;
-  GELX_PETSC(VecGetLocalSize(_branch, &n));
-  GELX_PETSC(VecGetArray(_branch, &direction));
-  std::copy_n(mode.shape->x()->array().begin(), n, direction);
-  GELX_PETSC(VecRestoreArray(_branch, &direction));
+  _inner.tangent(_K);
+  GELX_PETSC(KSPSetOperators(_ksp, _K, _K));
+  GELX_PETSC(KSPSolve(_ksp, b, y));
+  KSPConvergedReason reason;
+  GELX_PETSC(KSPGetConvergedReason(_ksp, &reason));
+  if (reason < 0)
+    throw ConvergenceError(std::string("the tangent could not be solved: ")
+                           + KSPConvergedReasons[reason]);
+}
+
+void ArcLengthSystem::tangent(Mat)
+{
+  GELX_PETSC(VecWAXPY(_g, -1.0, _x0, _inner.unknowns()));
+  GELX_PETSC(VecScale(_g, 1.0 / _ds));
+  _g_l = _psi * _psi * (_lambda - _l0) / _ds;
+  load_derivative(_f);
+  solve_tangent(_f, _b);
+}
+
+void ArcLengthSystem::apply_tangent(Vec v, Vec y) const
+{
+  const double v_l = split(v, _work);
+  GELX_PETSC(MatMult(_K, _work, _work2));
+  GELX_PETSC(VecAXPY(_work2, v_l, _f));
+  join(_work2, dot(_g, _work) + _g_l * v_l, y);
+}
+
+void ArcLengthSystem::apply_inverse(Vec r, Vec z) const
+{
+  const double r_l = split(r, _work);
+  GELX_PETSC(KSPSolve(_ksp, _work, _work2)); // a = K^-1 r_x
+  KSPConvergedReason reason;
+  GELX_PETSC(KSPGetConvergedReason(_ksp, &reason));
+  if (reason < 0)
+    throw ConvergenceError("K^-1 failed");
+  const double d_l = (r_l - dot(_g, _work2)) / (_g_l - dot(_g, _b));
+  GELX_PETSC(VecAXPY(_work2, -d_l, _b));
+  join(_work2, d_l, z);
+}
+
+Vec ArcLengthSystem::create_vector() const
+{
+  Vec v;
+  GELX_PETSC(VecDuplicate(_x, &v));
+  return v;
+}
+
+Mat ArcLengthSystem::create_matrix() const
+{
+  PetscInt local, global;
+  GELX_PETSC(VecGetLocalSize(_x, &local));
+  GELX_PETSC(VecGetSize(_x, &global));
+  Mat A;
+  GELX_PETSC(MatCreateShell(_comm, local, local, global, global,
+                            const_cast<ArcLengthSystem*>(this), &A));
+  GELX_PETSC(MatShellSetOperation(A, MATOP_MULT, (void (*)(void))shell_mult));
+  return A;
+}
+
+void ArcLengthSystem::configure(SNES snes) const
+{
+  KSP ksp;
+  PC pc;
+  const char* prefix;
+  GELX_PETSC(SNESGetOptionsPrefix(snes, &prefix));
+  GELX_PETSC(SNESGetKSP(snes, &ksp));
+  GELX_PETSC(KSPSetOptionsPrefix(ksp, (std::string(prefix ? prefix : "") + "bordered_").c_str()));
+  GELX_PETSC(KSPSetType(ksp, KSPPREONLY));
+  GELX_PETSC(KSPGetPC(ksp, &pc));
+  GELX_PETSC(PCSetType(pc, PCSHELL));
+  GELX_PETSC(PCShellSetContext(pc, const_cast<ArcLengthSystem*>(this)));
+  GELX_PETSC(PCShellSetApply(pc, shell_apply));
+}
+
+// --- The path -----------------------------------------------------------------------------
+
+ArcLength::ArcLength(MPI_Comm comm, NonlinearSystem& system,
+                     std::function<void(double)> set_load, const std::string& prefix)
+    : _comm(comm), _system(system), _bordered(system, std::move(set_load), prefix),
+      _newton(comm, with_corrector_defaults(prefix)), _prefix(prefix),
+      _load(system.create_vector())
+{
+}
+
+double ArcLength::tangent_direction(const PathState& state, double psi, Vec t)
+{
+  // K dx/ds + f dlambda/ds = 0: the direction (-K^-1 f, 1), scaled to unit length
+  _bordered.load_derivative(_load.get());
+  _bordered.solve_tangent(_load.get(), t);
+  const double norm = std::sqrt(dot(t, t) + psi * psi);
+  GELX_PETSC(VecScale(t, -1.0 / norm));
+  double t_l = 1.0 / norm;
+  // Keep going the way the path went: through a limit point lambda decreases
+  if (state.direction && dot(t, state.direction.get()) + psi * psi * t_l * state.load_direction < 0)
+  {
+    GELX_PETSC(VecScale(t, -1.0));
+    t_l = -t_l;
+  }
+  return t_l;
+}
+
+double ArcLength::switch_branch(PathState& state)
+{
+  Vec bordered = _bordered.create_vector();
+  _bordered.pack(_system.unknowns(), state.load, bordered);
+  _bordered.set_state(bordered);
+  VecDestroy(&bordered);
+  _bordered.inner().tangent(_bordered.inner_tangent());
+  const BucklingMode mode = lowest_tangent_eigenpair(_comm, _bordered.inner_tangent(),
+                                                     _system.problem().u()->function_space());
+  // The mode in the unknowns' layout
+  Vec direction = _system.create_vector();
+  PetscScalar* values;
+  GELX_PETSC(VecGetArray(direction, &values));
+  const auto& shape = mode.shape->x()->array();
+  const auto& row_of = _system.unknown_of_problem_dof();
+  for (std::size_t i = 0; i < row_of.size(); ++i)
+    if (row_of[i] >= 0)
+      values[row_of[i]] = shape[i];
+  GELX_PETSC(VecRestoreArray(direction, &values));
   PetscReal norm;
-  GELX_PETSC(VecNormalize(_branch, &norm));
-  _switch_branch = true;
+  GELX_PETSC(VecNormalize(direction, &norm));
+  state.direction.reset(direction);
+  state.load_direction = 0;
+  state.stability = mode.load_factor;
+  _switch_pending = true;
   return mode.load_factor;
+}
+
+void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObserver>& observers,
+                    const std::function<bool(const StepRecord&)>& stop)
+{
+  double ds = state.step_size > 0 ? state.step_size : real_option(_prefix, "ds", 0.05);
+  const double ds_max = real_option(_prefix, "ds_max", 10 * ds);
+  const double ds_min = real_option(_prefix, "ds_min", 1e-6 * ds);
+  const double psi = real_option(_prefix, "psi", 0.0);
+  const int target_it = int_option(_prefix, "target_it", 5);
+  const double rtol = real_option(_prefix, "rtol", 1e-9);
+  const bool track_stability = int_option(_prefix, "stability", 0) != 0;
+  PetscReal atol;
+  GELX_PETSC(SNESGetTolerances(_newton.snes(), &atol, nullptr, nullptr, nullptr, nullptr));
+  const bool root = dolfinx::MPI::rank(_comm) == 0;
+
+  OwnedVec x0(_system.create_vector()), t(_system.create_vector());
+  OwnedVec bordered(_bordered.create_vector()), last_point(_bordered.create_vector());
+  for (int taken = 0; taken < max_steps; ++taken)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    GELX_PETSC(VecCopy(_system.unknowns(), x0.get()));
+    const double l0 = state.load;
+    int cutbacks = 0;
+    NewtonReport report;
+    while (true)
+    {
+      // Predictor: along the path's tangent, or along the crossing branch's mode
+      _bordered.pack(x0.get(), l0, bordered.get());
+      _bordered.set_state(bordered.get());
+      double t_l = 0;
+      if (_switch_pending)
+      {
+        GELX_PETSC(VecCopy(state.direction.get(), t.get()));
+        _bordered.load_derivative(_load.get());
+      }
+      else
+        t_l = tangent_direction(state, psi, t.get());
+      // |dR/dlambda| is the force scale of the residual test
+      PetscReal f_norm;
+      GELX_PETSC(VecNorm(_load.get(), NORM_2, &f_norm));
+      GELX_PETSC(SNESSetTolerances(_newton.snes(), std::max<double>(atol, rtol * f_norm),
+                                   PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+      GELX_PETSC(VecWAXPY(_system.unknowns(), ds, t.get(), x0.get()));
+      _bordered.pack(_system.unknowns(), l0 + ds * t_l, bordered.get());
+      _bordered.set_constraint(x0.get(), l0, ds, psi);
+      _bordered.pack(x0.get(), l0, last_point.get());
+      _bordered.set_state(bordered.get());
+      report = _newton.correct(_bordered, last_point.get());
+      if (report.converged)
+        break;
+      // Failed: back to the last point with half the arc length
+      _bordered.pack(x0.get(), l0, bordered.get());
+      _bordered.set_state(bordered.get());
+      ds *= 0.5;
+      ++cutbacks;
+      ++state.cutbacks;
+      if (root)
+        std::printf("  arc-length step failed (%s): ds -> %.4g\n", report.reason.c_str(), ds);
+      if (ds < ds_min)
+      {
+        std::ostringstream msg;
+        msg << "arc-length step " << state.step + 1 << " failed at lambda = " << l0
+            << " with the arc length below ds_min = " << ds_min << " (" << report.reason << ")";
+        throw ConvergenceError(msg.str());
+      }
+    }
+    const double lambda = _bordered.load_factor();
+    // The step's direction (dx/ds, dlambda/ds) orients the next predictor
+    if (!state.direction)
+      state.direction.reset(_system.create_vector());
+    GELX_PETSC(VecWAXPY(state.direction.get(), -1.0, x0.get(), _system.unknowns()));
+    GELX_PETSC(VecScale(state.direction.get(), 1.0 / ds));
+    const double previous_load_direction = state.load_direction;
+    state.load_direction = (lambda - l0) / ds;
+    _switch_pending = false;
+
+    StepRecord record;
+    record.step = ++state.step;
+    record.load = state.load = lambda;
+    record.step_size = ds;
+    record.arc_length = state.arc_length += ds;
+    record.newton = report;
+    record.cutbacks = cutbacks;
+    record.limit_point = previous_load_direction * state.load_direction < 0;
+    if (track_stability)
+    {
+      const double previous_stability = state.stability;
+      _bordered.inner().tangent(_bordered.inner_tangent());
+      state.stability = lowest_tangent_eigenpair(_comm, _bordered.inner_tangent(),
+                                                 _system.problem().u()->function_space())
+                            .load_factor;
+      record.stability = state.stability;
+      record.bifurcation = !record.limit_point && previous_stability * state.stability < 0;
+    }
+    ds = std::min(ds_max, ds * std::clamp(std::sqrt(double(target_it)
+                                                    / std::max(report.iterations, 1)),
+                                          0.5, 2.0));
+    state.step_size = ds;
+    record.wall_time
+        = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (root)
+      std::printf("  arc-length step %d: lambda = %.10g, s = %.6g, %d iterations%s%s\n",
+                  record.step, lambda, record.arc_length, report.iterations,
+                  record.limit_point ? " (limit point passed)" : "",
+                  record.bifurcation ? " (bifurcation passed)" : "");
+    for (const auto& observe : observers)
+      observe(record, state);
+    if (stop(record))
+      return;
+  }
 }
 
 std::pair<double, double> parabola_vertex(const double s[3], const double l[3])
@@ -67,169 +407,6 @@ std::pair<double, double> parabola_vertex(const double s[3], const double l[3])
   const double c0 = l[0] - c1 * s[0] - c2 * s[0] * s[0];
   const double sv = -c1 / (2 * c2);
   return {sv, c0 + c1 * sv + c2 * sv * sv};
-}
-
-void ArcLength::run(double lambda0, int max_steps,
-                    const std::function<void(const PathPoint&)>& on_point,
-                    const std::function<bool(const PathPoint&)>& stop)
-{
-  double ds = real_option(_prefix, "ds", 0.05);
-  const double ds_max = real_option(_prefix, "ds_max", 10 * ds);
-  const double ds_min = real_option(_prefix, "ds_min", 1e-6 * ds);
-  const double psi = real_option(_prefix, "psi", 0.0);
-  const int max_it = int_option(_prefix, "max_it", 15);
-  const int target_it = int_option(_prefix, "target_it", 5);
-  const double rtol = real_option(_prefix, "rtol", 1e-9);
-  const bool monitor = int_option(_prefix, "monitor", 1) && dolfinx::MPI::rank(_comm) == 0;
-  const bool track_stability = int_option(_prefix, "stability", 0) != 0;
-
-  Vec u = _problem.unknowns();
-  double lambda = lambda0, s = 0, dlambda_prev = 0;
-  bool have_direction = false;
-  PathPoint point;
-  point.load_factor = lambda;
-  auto dot = [](Vec x, Vec y)
-  {
-    PetscScalar d;
-    GELX_PETSC(VecDot(x, y, &d));
-    return static_cast<double>(d);
-  };
-  auto solve = [&](Vec rhs, Vec x)
-  {
-    GELX_PETSC(KSPSolve(_ksp, rhs, x));
-    KSPConvergedReason reason;
-    GELX_PETSC(KSPGetConvergedReason(_ksp, &reason));
-    return reason >= 0;
-  };
-
-  for (int step = 1; step <= max_steps; ++step)
-  {
-    GELX_PETSC(VecCopy(u, _u0));
-    int cutbacks = 0;
-    while (true)
-    {
-      // Predictor along the tangent, K du_t = -dR/dlambda, or along the branch's mode
-      _set_load(lambda);
-      _problem.tangent(_K);
-      GELX_PETSC(KSPSetOperators(_ksp, _K, _K));
-      load_derivative(lambda, _f);
-      const double f_norm = std::sqrt(dot(_f, _f));
-      bool ok = true;
-      double Dl = 0;
-      if (_switch_branch)
-      {
-        GELX_PETSC(VecCopy(_branch, _du));
-        GELX_PETSC(VecScale(_du, ds));
-      }
-      else
-      {
-        GELX_PETSC(VecScale(_f, -1.0));
-        ok = solve(_f, _b);
-        GELX_PETSC(VecScale(_f, -1.0));
-        double dl = ds / std::sqrt(dot(_b, _b) + psi * psi);
-        if (have_direction && dot(_b, _du_prev) + psi * psi * dlambda_prev < 0)
-          dl = -dl; // keep going the way the path went: through a limit point, lambda decreases
-        GELX_PETSC(VecCopy(_b, _du));
-        GELX_PETSC(VecScale(_du, dl));
-        Dl = dl;
-      }
-
-      int it = 0;
-      bool converged = false;
-      for (; ok && it < max_it; ++it)
-      {
-        GELX_PETSC(VecWAXPY(u, 1.0, _du, _u0));
-        _problem.unknowns_changed();
-        _set_load(lambda + Dl);
-        if (!_problem.admissible())
-          break;
-        _problem.residual(_R);
-        const double r_norm = std::sqrt(dot(_R, _R));
-        if (monitor)
-          std::printf("    %3d  |R| = %.4e  lambda = %.10g\n", it, r_norm, lambda + Dl);
-        if (!std::isfinite(r_norm))
-          break;
-        if (r_norm <= rtol * f_norm)
-        {
-          converged = true;
-          break;
-        }
-        _problem.tangent(_K);
-        GELX_PETSC(KSPSetOperators(_ksp, _K, _K));
-        load_derivative(lambda + Dl, _f);
-        GELX_PETSC(VecScale(_R, -1.0));
-        GELX_PETSC(VecScale(_f, -1.0));
-        ok = solve(_R, _a) && solve(_f, _b);
-        // |du + a + d b|^2 + psi^2 (Dl + d)^2 = ds^2
-        GELX_PETSC(VecAXPY(_a, 1.0, _du)); // a <- du + a
-        const double A = dot(_b, _b) + psi * psi;
-        const double B = 2 * (dot(_a, _b) + psi * psi * Dl);
-        const double C = dot(_a, _a) + psi * psi * Dl * Dl - ds * ds;
-        const double disc = B * B - 4 * A * C;
-        if (disc < 0)
-        {
-          ok = false;
-          break;
-        }
-        const double roots[2] = {(-B + std::sqrt(disc)) / (2 * A), (-B - std::sqrt(disc)) / (2 * A)};
-        // the root whose increment points most along the current one
-        double best = roots[0], best_cos = -INFINITY;
-        for (double d : roots)
-        {
-          const double c = dot(_a, _du) + d * dot(_b, _du) + psi * psi * (Dl + d) * Dl;
-          if (c > best_cos)
-          {
-            best_cos = c;
-            best = d;
-          }
-        }
-        GELX_PETSC(VecWAXPY(_du, best, _b, _a));
-        Dl += best;
-      }
-      if (converged)
-      {
-        const double previous = dlambda_prev;
-        lambda += Dl;
-        s += ds;
-        GELX_PETSC(VecCopy(_du, _du_prev));
-        dlambda_prev = Dl;
-        have_direction = true;
-        _switch_branch = false;
-        const double previous_stability = point.stability;
-        point = {step, lambda, s, it, cutbacks, previous * Dl < 0};
-        if (track_stability)
-        {
-          _problem.tangent(_K);
-          point.stability
-              = lowest_tangent_eigenpair(_comm, _K, _problem.u()->function_space()).load_factor;
-          point.bifurcation = !point.limit_point && previous_stability * point.stability < 0;
-        }
-        if (monitor)
-          std::printf("  arc-length step %d: lambda = %.10g, s = %.6g, %d iterations%s%s\n",
-                      step, lambda, s, it, point.limit_point ? " (limit point passed)" : "",
-                      point.bifurcation ? " (bifurcation passed)" : "");
-        on_point(point);
-        ds = std::min(ds_max, ds * std::clamp(std::sqrt(double(target_it) / std::max(it, 1)),
-                                              0.5, 2.0));
-        break;
-      }
-      // Failed: back to the last point with half the arc length
-      GELX_PETSC(VecCopy(_u0, u));
-      _problem.unknowns_changed();
-      _set_load(lambda);
-      ds *= 0.5;
-      ++cutbacks;
-      if (ds < ds_min)
-      {
-        std::ostringstream msg;
-        msg << "arc-length step " << step << " failed at lambda = " << lambda
-            << " with the arc length below ds_min = " << ds_min;
-        throw ConvergenceError(msg.str());
-      }
-    }
-    if (stop(point))
-      return;
-  }
 }
 
 } // namespace gelx

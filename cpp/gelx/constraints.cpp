@@ -520,11 +520,13 @@ void MultipointConstraint::build_prolongation(const std::vector<Row>& rows)
       entries[i].emplace_back(reduced_column(master), a);
   }
   _dirichlet_masters.clear();
+  _unknown_of_problem_dof.assign(_num_owned, -1);
   for (std::int32_t i = 0, next = 0; i < _num_owned; ++i)
     if (!is_slave[i])
     {
       if (_is_dirichlet[i])
         _dirichlet_masters.emplace_back(i, next);
+      _unknown_of_problem_dof[i] = next;
       entries[i].emplace_back(_first_reduced + next++, 1.0);
     }
 
@@ -636,6 +638,19 @@ Mat MultipointConstraint::create_matrix() const
   return A;
 }
 
+std::vector<PetscInt> MultipointConstraint::prescribed_rows() const
+{
+  require_finalized("prescribed_rows");
+  std::vector<PetscInt> rows;
+  for (const auto& [dof, reduced] : _dirichlet_masters)
+    rows.push_back(reduced);
+  if (dolfinx::MPI::rank(_comm) == 0)
+    for (std::size_t k = 0; k < _macros.size(); ++k)
+      if (_macros[k].prescribed)
+        rows.push_back(macro_local_index(k));
+  return rows;
+}
+
 void MultipointConstraint::tangent(Mat A)
 {
   require_finalized("tangent");
@@ -643,13 +658,9 @@ void MultipointConstraint::tangent(Mat A)
     throw std::logic_error("MultipointConstraint::tangent needs a matrix from create_matrix()");
   _problem.tangent(_K);
   GELX_PETSC(MatPtAP(_K, _P, MAT_REUSE_MATRIX, PETSC_DEFAULT, &A));
-  std::vector<PetscInt> rows;
-  for (const auto& [dof, reduced] : _dirichlet_masters)
-    rows.push_back(_first_reduced + reduced);
-  if (dolfinx::MPI::rank(_comm) == 0)
-    for (std::size_t k = 0; k < _macros.size(); ++k)
-      if (_macros[k].prescribed)
-        rows.push_back(_first_reduced + macro_local_index(k));
+  std::vector<PetscInt> rows = prescribed_rows();
+  for (PetscInt& row : rows)
+    row += _first_reduced;
   GELX_PETSC(MatZeroRows(A, rows.size(), rows.data(), 1.0, nullptr, nullptr));
 }
 

@@ -160,6 +160,14 @@ public:
   /// tangent() reuses.
   Mat create_matrix() const override;
   bool admissible() const override { return _problem.admissible(); }
+  /// The Dirichlet masters and the prescribed macro unknowns.
+  std::vector<PetscInt> prescribed_rows() const override;
+  NonlinearProblem& problem() override { return _problem; }
+  /// The reduced index of each master dof, -1 for a slave (after finalize).
+  const std::vector<PetscInt>& unknown_of_problem_dof() const override
+  {
+    return _unknown_of_problem_dof;
+  }
 
 private:
   /// One constraint row: slave, masters (macro k encoded as -(k + 1)), constant.
@@ -213,6 +221,7 @@ private:
   PetscInt _first_reduced = 0;     ///< global index of the first owned reduced unknown
   /// Owned Dirichlet masters: problem local dof and reduced local index
   std::vector<std::pair<std::int32_t, PetscInt>> _dirichlet_masters;
+  std::vector<PetscInt> _unknown_of_problem_dof;
   Mat _P = nullptr;
   Vec _g = nullptr;          ///< constant part of u (slave rows), problem layout
   Vec _x = nullptr;          ///< reduced unknowns

@@ -10,13 +10,13 @@
 namespace gelx
 {
 
-RigidPlaneContact::RigidPlaneContact(NonlinearProblem& problem,
+RigidPlaneContact::RigidPlaneContact(NonlinearSystem& inner,
                                      std::shared_ptr<const dolfinx::fem::FunctionSpace> displacement,
                                      const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags,
                                      int tag, int axis, int side)
-    : _problem(problem), _axis(axis), _side(side)
+    : _inner(inner), _axis(axis), _side(side)
 {
-  const auto& W = *problem.u()->function_space();
+  const auto& W = *inner.problem().u()->function_space();
   const std::int32_t num_owned = W.dofmap()->index_map->size_local() * W.dofmap()->index_map_bs();
   // The displacement as a plain vector space V0, and where its dofs sit in the problem's vector
   std::shared_ptr<const dolfinx::fem::FunctionSpace> V0 = displacement;
@@ -35,14 +35,20 @@ RigidPlaneContact::RigidPlaneContact(NonlinearProblem& problem,
   _level_set = std::make_shared<dolfinx::fem::Function<double>>(V0);
   const std::vector<double> X = V0->tabulate_dof_coordinates(false);
   const int fdim = V0->mesh()->topology().dim() - 1;
+  const std::vector<PetscInt>& row_of = inner.unknown_of_problem_dof();
+  std::string error;
   for (std::int32_t node :
        dolfinx::fem::locate_dofs_topological(*V0, fdim, facet_tags.find(tag), false))
   {
     const std::int32_t dof = problem_dof(node, axis);
     if (dof >= num_owned)
       continue;
+    if (row_of[dof] < 0)
+      error = "contact: the normal displacement of a candidate node is constrained by a "
+              "multipoint constraint (the plane must act on free unknowns)";
     _node.push_back(node);
     _dof.push_back(dof);
+    _row.push_back(row_of[dof]);
     _node_dofs.push_back({problem_dof(node, 0), problem_dof(node, 1), problem_dof(node, 2)});
     _X.push_back({X[3 * node], X[3 * node + 1], X[3 * node + 2]});
   }
@@ -52,88 +58,110 @@ RigidPlaneContact::RigidPlaneContact(NonlinearProblem& problem,
     extent = std::max({extent, std::abs(X[0]), std::abs(X[1]), std::abs(X[2])});
   MPI_Allreduce(MPI_IN_PLACE, &extent, 1, MPI_DOUBLE, MPI_MAX, V0->mesh()->comm());
   _release_gap = 1e-10 * extent;
+  int failed = !error.empty();
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_LOR, V0->mesh()->comm());
+  if (failed)
+    throw std::runtime_error(error.empty() ? "contact: constrained candidates on another rank"
+                                           : error);
   _lambda.assign(_dof.size(), 0.0);
   const std::vector<std::int32_t> surface = facet_tags.find(tag);
   _surface = std::make_shared<dolfinx::mesh::MeshTags<std::int32_t>>(
       V0->mesh(), fdim, std::vector<std::int32_t>(surface),
       std::vector<std::int32_t>(surface.size(), 1));
   _active.assign(_dof.size(), 0);
+  _trial = _active;
 
   // c_i: the diagonal of the tangent at the current (reference) state
-  Mat A = problem.create_matrix();
-  Vec diagonal = problem.create_vector();
-  problem.tangent(A);
+  Mat A = inner.create_matrix();
+  Vec diagonal = inner.create_vector();
+  inner.tangent(A);
   GELX_PETSC(MatGetDiagonal(A, diagonal));
   GELX_PETSC(VecGetOwnershipRange(diagonal, &_first_row, nullptr));
   const PetscScalar* d;
   GELX_PETSC(VecGetArrayRead(diagonal, &d));
-  for (std::int32_t dof : _dof)
-    _scale.push_back(std::abs(d[dof]));
+  for (std::int32_t row : _row)
+    _scale.push_back(std::abs(d[row]));
   GELX_PETSC(VecRestoreArrayRead(diagonal, &d));
   VecDestroy(&diagonal);
   MatDestroy(&A);
 }
 
-void RigidPlaneContact::update_active_set(Vec unconstrained_residual)
+void RigidPlaneContact::trial_active_set(Vec inner_residual)
 {
   const PetscScalar* R;
-  GELX_PETSC(VecGetArrayRead(unconstrained_residual, &R));
-  const auto& u = _problem.u()->x()->array();
+  GELX_PETSC(VecGetArrayRead(inner_residual, &R));
+  const auto& u = _inner.problem().u()->x()->array();
   for (std::size_t i = 0; i < _dof.size(); ++i)
   {
-    _lambda[i] = _side * R[_dof[i]];
+    _lambda[i] = _side * R[_row[i]];
     const double gap = _side * (_X[i][_axis] + u[_dof[i]] - _position);
     // A free node enters when it penetrates, a node in contact leaves when it is pulled
     // (a force below -c_i _release_gap, beyond round-off). The primal-dual test
     // c gap < lambda also for free nodes reads their out-of-balance force during the
     // iterations as a contact force and activates nodes that do not touch, which then pull
     // and leave again: Newton cycled for 40 iterations at d/H = 0.12 in the pyramid scene.
-    _active[i] = _active[i] ? _lambda[i] > -_scale[i] * _release_gap : gap < 0;
+    _trial[i] = _active[i] ? _lambda[i] > -_scale[i] * _release_gap : gap < 0;
   }
-  GELX_PETSC(VecRestoreArrayRead(unconstrained_residual, &R));
+  GELX_PETSC(VecRestoreArrayRead(inner_residual, &R));
+}
+
+void RigidPlaneContact::commit()
+{
+  _inner.commit();
+  _active = _trial;
 }
 
 void RigidPlaneContact::residual(Vec r)
 {
-  _problem.residual(r);
-  update_active_set(r);
-  const auto& u = _problem.u()->x()->array();
+  _inner.residual(r);
+  trial_active_set(r);
+  const auto& u = _inner.problem().u()->x()->array();
   PetscScalar* values;
   GELX_PETSC(VecGetArray(r, &values));
   for (std::size_t i = 0; i < _dof.size(); ++i)
-    if (_active[i])
-      values[_dof[i]] = u[_dof[i]] - (_position - _X[i][_axis]);
+    if (_trial[i])
+      values[_row[i]] = u[_dof[i]] - (_position - _X[i][_axis]);
   GELX_PETSC(VecRestoreArray(r, &values));
 }
 
 void RigidPlaneContact::tangent(Mat A)
 {
-  _problem.tangent(A);
+  _inner.tangent(A);
   std::vector<PetscInt> rows;
   for (std::size_t i = 0; i < _dof.size(); ++i)
-    if (_active[i])
-      rows.push_back(_first_row + _dof[i]);
+    if (_trial[i])
+      rows.push_back(_first_row + _row[i]);
   // Later assemblies write into these rows again: keep their sparsity
   GELX_PETSC(MatSetOption(A, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
   GELX_PETSC(MatZeroRows(A, rows.size(), rows.data(), 1.0, nullptr, nullptr));
 }
 
+std::vector<PetscInt> RigidPlaneContact::prescribed_rows() const
+{
+  std::vector<PetscInt> rows = _inner.prescribed_rows();
+  for (std::size_t i = 0; i < _dof.size(); ++i)
+    if (_trial[i])
+      rows.push_back(_row[i]);
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+
 ContactState RigidPlaneContact::state()
 {
-  Vec r = _problem.create_vector();
-  _problem.residual(r);
-  update_active_set(r);
+  Vec r = _inner.create_vector();
+  _inner.residual(r);
+  trial_active_set(r);
   VecDestroy(&r);
-  const auto& u = _problem.u()->x()->array();
+  const auto& u = _inner.problem().u()->x()->array();
   double sums[2] = {0, 0}, penetration = 0;
   for (std::size_t i = 0; i < _dof.size(); ++i)
   {
     sums[0] += _lambda[i];
-    sums[1] += _active[i];
+    sums[1] += _trial[i];
     penetration
         = std::max(penetration, -_side * (_X[i][_axis] + u[_dof[i]] - _position));
   }
-  MPI_Comm comm = _problem.u()->function_space()->mesh()->comm();
+  MPI_Comm comm = _inner.problem().u()->function_space()->mesh()->comm();
   MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, comm);
   MPI_Allreduce(MPI_IN_PLACE, &penetration, 1, MPI_DOUBLE, MPI_MAX, comm);
   return {sums[0], static_cast<std::int64_t>(sums[1]), penetration};
@@ -164,11 +192,11 @@ RigidPlaneContact::area_form(const ufcx_form& form,
 
 std::vector<RigidPlaneContact::Node> RigidPlaneContact::nodes() const
 {
-  const auto& u = _problem.u()->x()->array();
+  const auto& u = _inner.problem().u()->x()->array();
   std::vector<Node> result;
   for (std::size_t i = 0; i < _dof.size(); ++i)
   {
-    Node n{_X[i], _X[i], _lambda[i], 0, bool(_active[i])};
+    Node n{_X[i], _X[i], _lambda[i], 0, bool(_trial[i])};
     for (int c = 0; c < 3; ++c)
       n.x[c] += u[_node_dofs[i][c]];
     const double gap = _side * (n.x[_axis] - _position);

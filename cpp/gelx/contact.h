@@ -23,9 +23,10 @@ struct ContactState
   double max_penetration = 0;  ///< largest distance of a candidate node behind the plane
 };
 
-/// The equilibrium problem with the unilateral constraint of a rigid plane
-/// x_k = position (axis k; the body on the side `side` = +1 or -1 of it), solved by a
-/// Newton method with an active set on the nodes of a candidate surface.
+/// A system with the unilateral constraint of a rigid plane x_k = position (axis k; the body on
+/// the side `side` = +1 or -1 of it), imposed exactly by an active set on the nodes of a
+/// candidate surface: a decorator of any NonlinearSystem whose unknowns hold the candidates'
+/// normal displacement (the problem, or a MultipointConstraint that leaves it free).
 ///
 /// Why an exact active set: the hard case of the pyramid scene is contact that starts at one
 /// sharp apex node and grows into a patch with concave edges. A penalty lets the apex sink into
@@ -37,23 +38,23 @@ struct ContactState
 ///
 /// Every candidate node i carries the complementarity conditions gap_i >= 0, lambda_i >= 0,
 /// gap_i lambda_i = 0, with gap_i = side (X_i + u_i - position) and the contact force
-/// lambda_i = side R_i, R the residual of the unconstrained problem. They are solved by an
-/// active set updated at every Newton iterate: a free node enters the set when it penetrates
-/// (gap_i < 0), a node in the set leaves it when its force turns to tension (lambda_i < 0).
-/// The rows of the nodes in the set are replaced by u_i - u_i*, u_i* the displacement that
-/// closes the gap (a Dirichlet row, like those of NonlinearProblem), the others keep R_i, so
-/// the solver (NewtonSolver, with its line search and admissibility checks, inside LoadStepper)
-/// needs nothing else. A converged state has no penetration at any node and no tension in the
+/// lambda_i = side R_i, R the residual of the wrapped system. They are solved by an active set:
+/// a free node enters the set when it penetrates (gap_i < 0), a node in the set leaves it when
+/// its force turns to tension (lambda_i < 0). The rows of the nodes in the set are replaced by
+/// u_i - u_i*, u_i* the displacement that closes the gap (a prescribed row), the others keep
+/// R_i, so any Newton solver needs nothing else. The set a residual uses follows from the state
+/// and the set committed at the last accepted iterate (commit()); a trial state of a line search
+/// changes nothing. A converged state has no penetration at any node and no tension in the
 /// patch. c_i, the tangent's diagonal, turns gaps into forces for the contact level set.
 class RigidPlaneContact : public NonlinearSystem
 {
 public:
-  /// @param problem the unconstrained problem
-  /// @param displacement the displacement space: the problem's space, or its sub-space W->sub({0})
-  ///        for a mixed displacement-pressure formulation
+  /// @param inner the system without the plane
+  /// @param displacement the displacement space: the problem's space, or its sub-space
+  ///        W->sub({0}) for a mixed displacement-pressure formulation
   /// @param facet_tags, tag the candidate surface
   /// @param axis, side the plane's normal axis and the side of the plane the body is on
-  RigidPlaneContact(NonlinearProblem& problem,
+  RigidPlaneContact(NonlinearSystem& inner,
                     std::shared_ptr<const dolfinx::fem::FunctionSpace> displacement,
                     const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags, int tag, int axis,
                     int side);
@@ -62,13 +63,22 @@ public:
   void set_position(double position) { _position = position; }
   double position() const { return _position; }
 
-  Vec unknowns() override { return _problem.unknowns(); }
-  void unknowns_changed() override { _problem.unknowns_changed(); }
+  Vec unknowns() override { return _inner.unknowns(); }
+  void unknowns_changed() override { _inner.unknowns_changed(); }
   void residual(Vec r) override;
   void tangent(Mat A) override;
-  Vec create_vector() const override { return _problem.create_vector(); }
-  Mat create_matrix() const override { return _problem.create_matrix(); }
-  bool admissible() const override { return _problem.admissible(); }
+  Vec create_vector() const override { return _inner.create_vector(); }
+  Mat create_matrix() const override { return _inner.create_matrix(); }
+  bool admissible() const override { return _inner.admissible(); }
+  /// The wrapped system's prescribed rows and those of the nodes in contact.
+  std::vector<PetscInt> prescribed_rows() const override;
+  /// Accept the active set of the last residual evaluation.
+  void commit() override;
+  NonlinearProblem& problem() override { return _inner.problem(); }
+  const std::vector<PetscInt>& unknown_of_problem_dof() const override
+  {
+    return _inner.unknown_of_problem_dof();
+  }
 
   /// Force, active set size and penetration at the current state. Collective.
   ContactState state();
@@ -101,22 +111,24 @@ public:
   std::vector<Node> nodes() const;
 
 private:
-  /// Recompute, at the current unknowns, lambda and the active set (into _lambda, _active).
-  void update_active_set(Vec unconstrained_residual);
+  /// The contact forces lambda and the active set at the current state, from the wrapped
+  /// system's residual R and the committed set (into _lambda, _trial).
+  void trial_active_set(Vec inner_residual);
 
-  NonlinearProblem& _problem;
+  NonlinearSystem& _inner;
   int _axis, _side;
   double _position = 0;
-  /// Candidate nodes owned by this rank: the normal-component dof in the problem's vector,
-  /// the dofs of all three components, and the reference coordinates
-  std::vector<std::int32_t> _dof;
+  /// Candidate nodes owned by this rank: the normal component's index in the unknowns and in
+  /// the problem's vector, the problem dofs of all three components, the reference coordinates
+  std::vector<std::int32_t> _row, _dof;
   std::vector<std::array<std::int32_t, 3>> _node_dofs;
   std::vector<std::array<double, 3>> _X;
   std::vector<std::int32_t> _node;   ///< the candidate's node in the displacement space
   std::vector<double> _scale;        ///< c_i
-  double _release_gap = 0;           ///< round-off of lengths (see update_active_set)
+  double _release_gap = 0;           ///< round-off of lengths (see trial_active_set)
   std::vector<double> _lambda;       ///< contact force per candidate
-  std::vector<char> _active;
+  std::vector<char> _active;         ///< the committed active set
+  std::vector<char> _trial;          ///< the set of the last residual evaluation
   PetscInt _first_row = 0; ///< global index of the first owned row
   std::shared_ptr<dolfinx::fem::Function<double>> _level_set;
   /// The candidate facets, tagged 1 (the area form's ds(1))

@@ -10,35 +10,25 @@
 namespace gelx
 {
 
-void LoadSteppingOptions::declare(Parameters& p) { declare(p, LoadSteppingOptions{}); }
-
-void LoadSteppingOptions::declare(Parameters& p, const LoadSteppingOptions& d)
+void LoadSteppingOptions::bind(Parameters& p)
 {
   auto in_unit_interval = [](double v) { return v > 0 && v <= 1 ? "" : "must be in (0, 1]"; };
-  p.add("load stepping", "dt", d.dt, "first load-factor step", in_unit_interval);
-  p.add("load stepping", "dt_min", d.dt_min, "smallest step", in_unit_interval);
-  p.add("load stepping", "dt_max", d.dt_max, "largest step", in_unit_interval);
-  p.add("load stepping", "dt_grow", d.grow, "growth factor after an easy step",
-        [](double v) { return v >= 1 ? "" : "must be at least 1"; });
-  p.add("load stepping", "easy_iterations", d.easy_iterations,
-        "Newton iterations up to which a step counts as easy", Parameters::at_least_one);
-  p.add("load stepping", "max_cutbacks", d.max_cutbacks,
-        "step cut-backs allowed within one step (0 disables cut-back)",
-        [](int v) { return v >= 0 ? "" : "must not be negative"; });
+  p.bind("load stepping", "dt", dt, "first load-factor step", in_unit_interval);
+  p.bind("load stepping", "dt_min", dt_min, "smallest step", in_unit_interval);
+  p.bind("load stepping", "dt_max", dt_max, "largest step", in_unit_interval);
+  p.bind("load stepping", "dt_grow", grow, "growth factor after an easy step",
+         [](double v) { return v >= 1 ? "" : "must be at least 1"; });
+  p.bind("load stepping", "easy_iterations", easy_iterations,
+         "Newton iterations up to which a step counts as easy", Parameters::at_least_one);
+  p.bind("load stepping", "max_cutbacks", max_cutbacks,
+         "step cut-backs allowed within one step (0 disables cut-back)",
+         [](int v) { return v >= 0 ? "" : "must not be negative"; });
 }
 
-LoadSteppingOptions LoadSteppingOptions::from(const Parameters& p)
+void LoadSteppingOptions::check() const
 {
-  LoadSteppingOptions o;
-  o.dt = p.real("dt");
-  o.dt_min = p.real("dt_min");
-  o.dt_max = p.real("dt_max");
-  o.grow = p.real("dt_grow");
-  o.easy_iterations = p.integer("easy_iterations");
-  o.max_cutbacks = p.integer("max_cutbacks");
-  if (o.dt_min > o.dt || o.dt > o.dt_max)
+  if (dt_min > dt || dt > dt_max)
     throw InputError("load stepping needs dt_min <= dt <= dt_max");
-  return o;
 }
 
 LoadStepper::LoadStepper(NonlinearSystem& system, NewtonSolver& newton,
@@ -47,38 +37,39 @@ LoadStepper::LoadStepper(NonlinearSystem& system, NewtonSolver& newton,
 {
 }
 
-void LoadStepper::run(const std::function<void(const StepRecord&)>& on_step)
+void LoadStepper::run(const StepObserver& observer)
 {
-  const bool root = dolfinx::MPI::rank(PetscObjectComm((PetscObject)_newton.ksp())) == 0;
-  // The last converged state, restored after a failed attempt
-  struct SavedState
-  {
-    Vec v;
-    ~SavedState() { VecDestroy(&v); }
-  } saved{_system.create_vector()};
-  double t = 0, dt = _options.dt;
-  int step = 0, cutbacks = 0;
+  PathState state;
+  run(state, observer ? std::vector<StepObserver>{observer} : std::vector<StepObserver>{});
+}
+
+void LoadStepper::run(PathState& state, const std::vector<StepObserver>& observers)
+{
+  const bool root = dolfinx::MPI::rank(PetscObjectComm((PetscObject)_newton.snes())) == 0;
+  OwnedVec saved(_system.create_vector()); // the last completed step, restored after a failure
+  double dt = state.step_size > 0 ? state.step_size : _options.dt;
+  int cutbacks = 0;
   auto start = std::chrono::steady_clock::now();
   // The end point is reached exactly, whatever the step sizes on the way.
   constexpr double t_end = 1.0, t_eps = 1e-12;
-  while (t < t_end - t_eps)
+  while (state.load < t_end - t_eps)
   {
+    const double t = state.load;
     // Stretch the last step a little rather than leave a sliver of load for an extra step
     if (t + 1.25 * dt >= t_end)
       dt = t_end - t;
-    GELX_PETSC(VecCopy(_system.unknowns(), saved.v));
+    GELX_PETSC(VecCopy(_system.unknowns(), saved.get()));
     if (root)
-      std::printf("  step %d: t = %.6g (dt = %.4g)\n", step + 1, t + dt, dt);
+      std::printf("  step %d: t = %.6g (dt = %.4g)\n", state.step + 1, t + dt, dt);
     _apply_load(t + dt);
     NewtonReport report = _newton.solve(_system);
     if (!report.converged)
     {
-      GELX_PETSC(VecCopy(saved.v, _system.unknowns()));
-      _system.unknowns_changed();
+      _system.set_state(saved.get());
       if (cutbacks == _options.max_cutbacks
           || dt * _options.cut < _options.dt_min * (1 - 1e-12))
       {
-        _apply_load(t); // leave loads consistent with the last converged state
+        _apply_load(t); // leave loads consistent with the last completed state
         std::ostringstream msg;
         msg << "load step from t = " << t << " to " << t + dt << " failed (" << report.reason
             << ") after " << cutbacks << " cut-backs (max_cutbacks = " << _options.max_cutbacks
@@ -90,19 +81,26 @@ void LoadStepper::run(const std::function<void(const StepRecord&)>& on_step)
                     dt * _options.cut);
       dt *= _options.cut;
       ++cutbacks;
-      ++_total_cutbacks;
+      ++state.cutbacks;
       continue;
     }
-    t += dt;
-    ++step;
-    auto now = std::chrono::steady_clock::now();
-    StepRecord record{step, t, dt, report, cutbacks,
-                      std::chrono::duration<double>(now - start).count()};
-    on_step(record);
-    start = std::chrono::steady_clock::now();
-    cutbacks = 0;
+    state.load = t + dt;
+    ++state.step;
     if (report.iterations <= _options.easy_iterations)
       dt = std::min(dt * _options.grow, _options.dt_max);
+    state.step_size = dt;
+    const auto now = std::chrono::steady_clock::now();
+    StepRecord record;
+    record.step = state.step;
+    record.load = state.load;
+    record.step_size = state.load - t;
+    record.newton = report;
+    record.cutbacks = cutbacks;
+    record.wall_time = std::chrono::duration<double>(now - start).count();
+    for (const auto& observe : observers)
+      observe(record, state);
+    start = std::chrono::steady_clock::now();
+    cutbacks = 0;
   }
 }
 

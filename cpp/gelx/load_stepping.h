@@ -3,20 +3,11 @@
 /// Adaptive load stepping: the load factor t goes from 0 to 1 in steps that grow after easy
 /// Newton solves and are cut back after failed ones.
 
-#include "newton.h"
 #include "parameters.h"
-#include <functional>
-#include <stdexcept>
+#include "path.h"
 
 namespace gelx
 {
-
-/// The load path could not be followed: a step failed at the smallest allowed size.
-class ConvergenceError : public std::runtime_error
-{
-public:
-  using std::runtime_error::runtime_error;
-};
 
 struct LoadSteppingOptions
 {
@@ -28,22 +19,11 @@ struct LoadSteppingOptions
   int easy_iterations = 5; ///< a step that converged in at most this many iterations is easy
   int max_cutbacks = 12;   ///< cut-backs allowed within one step (0 disables cut-back)
 
-  /// Declare the options as scene parameters (section "load stepping"), with a scene's own
-  /// defaults.
-  static void declare(Parameters& p, const LoadSteppingOptions& defaults);
-  static void declare(Parameters& p);
-  static LoadSteppingOptions from(const Parameters& p);
-};
-
-/// One converged step.
-struct StepRecord
-{
-  int step = 0;
-  double t = 0;             ///< load factor reached
-  double dt = 0;            ///< step taken
-  NewtonReport newton;      ///< the converged solve
-  int cutbacks = 0;         ///< failed attempts before this step converged
-  double wall_time = 0;     ///< seconds spent on this step, failed attempts included
+  /// Bind the options to scene parameters (section "load stepping"), the current values as
+  /// their defaults.
+  void bind(Parameters& p);
+  /// Throws InputError unless dt_min <= dt <= dt_max.
+  void check() const;
 };
 
 /// Follows the load path t: 0 -> 1 with Newton solves at each step.
@@ -54,19 +34,18 @@ public:
   LoadStepper(NonlinearSystem& system, NewtonSolver& newton, LoadSteppingOptions options,
               std::function<void(double)> apply_load);
 
-  /// Run to t = 1, calling `on_step` after every converged step (write output there: a step
-  /// reported is complete). Throws ConvergenceError when a step fails with no cut-back left
-  /// or when cutting would take the step below dt_min.
-  void run(const std::function<void(const StepRecord&)>& on_step);
-
-  int total_cutbacks() const { return _total_cutbacks; }
+  /// Run from `state` (a new path: PathState{}) to t = 1, calling every observer after every
+  /// completed step. Throws ConvergenceError when a step fails with no cut-back left or when
+  /// cutting would take the step below dt_min; the state then holds the last completed step.
+  void run(PathState& state, const std::vector<StepObserver>& observers);
+  /// Run a new path with one observer, or none.
+  void run(const StepObserver& observer = nullptr);
 
 private:
   NonlinearSystem& _system;
   NewtonSolver& _newton;
   LoadSteppingOptions _options;
   std::function<void(double)> _apply_load;
-  int _total_cutbacks = 0;
 };
 
 } // namespace gelx

@@ -2,164 +2,344 @@
 #include "petsc_utils.h"
 
 #include <cmath>
-#include <cstdio>
-#include <dolfinx/common/MPI.h>
+#include <exception>
 
 namespace gelx
 {
+namespace
+{
+using Progress = NewtonSolver::Progress;
+
+/// Run a callback body for PETSc: an exception becomes an error code (PETSc is C and must not
+/// be unwound through); NewtonSolver::solve rethrows it.
+template <typename Body>
+PetscErrorCode guarded(std::exception_ptr& error, Body&& body)
+{
+  try
+  {
+    body();
+    return 0;
+  }
+  catch (...)
+  {
+    error = std::current_exception();
+    return PETSC_ERR_USER;
+  }
+}
+
+struct Context
+{
+  Progress* progress;
+  std::exception_ptr error;
+};
+
+Context& context_of(SNES snes)
+{
+  void* ctx = nullptr;
+  SNESGetFunction(snes, nullptr, nullptr, &ctx);
+  return *static_cast<Context*>(ctx);
+}
+
+PetscErrorCode form_residual(SNES snes, Vec x, Vec r, void* ctx)
+{
+  auto& c = *static_cast<Context*>(ctx);
+  return guarded(c.error,
+                 [&]
+                 {
+                   c.progress->system->set_state(x);
+                   if (!c.progress->system->admissible())
+                     GELX_PETSC(SNESSetFunctionDomainError(snes)); // PETSc sets r to Inf
+                   else
+                     c.progress->system->residual(r);
+                 });
+}
+
+PetscErrorCode form_tangent(SNES, Vec x, Mat, Mat P, void* ctx)
+{
+  auto& c = *static_cast<Context*>(ctx);
+  return guarded(c.error,
+                 [&]
+                 {
+                   c.progress->system->set_state(x);
+                   c.progress->system->tangent(P);
+                 });
+}
+
+/// SNESSetUpdate: called at the start of every Newton iteration, at the accepted iterate.
+PetscErrorCode commit_iterate(SNES snes, PetscInt)
+{
+  auto& c = context_of(snes);
+  return guarded(c.error, [&] { c.progress->system->commit(); });
+}
+
+/// Line-search pre-check: halve the step -Y until X - Y is admissible (see the class comment).
+PetscErrorCode admissible_step(SNESLineSearch, Vec X, Vec Y, PetscBool* changed, void* ctx)
+{
+  auto& c = *static_cast<Context*>(ctx);
+  return guarded(c.error,
+                 [&]
+                 {
+                   Progress& p = *c.progress;
+                   *changed = PETSC_FALSE;
+                   for (int k = 0; k < p.admissible_halvings; ++k)
+                   {
+                     GELX_PETSC(VecWAXPY(p.work, -1.0, Y, X));
+                     p.system->set_state(p.work);
+                     if (p.system->admissible())
+                       break;
+                     GELX_PETSC(VecScale(Y, 0.5));
+                     *changed = PETSC_TRUE;
+                     ++p.report.backtracks;
+                   }
+                   GELX_PETSC(VecNorm(Y, NORM_2, &p.step_norm));
+                 });
+}
+
+/// Line-search post-check: count a reduction of the step by the line search itself (those
+/// that backtrack hand over Y scaled by their step length).
+PetscErrorCode count_reduction(SNESLineSearch, Vec, Vec Y, Vec, PetscBool* changed_y,
+                               PetscBool* changed_w, void* ctx)
+{
+  auto& c = *static_cast<Context*>(ctx);
+  return guarded(c.error,
+                 [&]
+                 {
+                   *changed_y = *changed_w = PETSC_FALSE;
+                   PetscReal norm;
+                   GELX_PETSC(VecNorm(Y, NORM_2, &norm));
+                   if (norm < (1 - 1e-12) * c.progress->step_norm)
+                     ++c.progress->report.backtracks;
+                 });
+}
+
+double distance(Vec a, Vec b, Vec work)
+{
+  GELX_PETSC(VecWAXPY(work, -1.0, b, a));
+  PetscReal d;
+  GELX_PETSC(VecNorm(work, NORM_2, &d));
+  return d;
+}
+
+/// The convergence test of the class comment.
+PetscErrorCode converged(SNES snes, PetscInt it, PetscReal, PetscReal, PetscReal fnorm,
+                         SNESConvergedReason* reason, void* ctx)
+{
+  auto& c = *static_cast<Context*>(ctx);
+  return guarded(
+      c.error,
+      [&]
+      {
+        Progress& p = *c.progress;
+        NewtonReport& r = p.report;
+        Vec x;
+        GELX_PETSC(SNESGetSolution(snes, &x));
+        PetscReal rtol, atol, stol;
+        PetscInt max_it, max_funcs;
+        GELX_PETSC(SNESGetTolerances(snes, &atol, &rtol, &stol, &max_it, &max_funcs));
+        *reason = SNES_CONVERGED_ITERATING;
+        if (it == 0 && !p.start_given)
+          GELX_PETSC(VecCopy(x, p.x0));
+        if (it == 0 && !p.predicted)
+        {
+          GELX_PETSC(VecCopy(p.x0, p.x_previous));
+          r.residual0 = fnorm;
+          r.residual_history = {fnorm};
+        }
+        else if (it > 0)
+          r.residual_history.push_back(fnorm);
+        else
+          r.residual_history.back() = fnorm; // the predicted state's residual, evaluated anew
+        r.iterations = it + (p.predicted ? 1 : 0);
+        r.residual = fnorm;
+        if (!std::isfinite(fnorm))
+        {
+          *reason = SNES_DIVERGED_FNORM_NAN;
+          r.reason = "the residual is not finite";
+          return;
+        }
+        const int k = r.iterations; // the iterate's index, the predictor counted
+        const double step = k > 0 ? distance(x, p.x_previous, p.work) : 0.0;
+        GELX_PETSC(VecCopy(x, p.x_previous));
+        r.error_estimate = k > 0 ? step * fnorm / r.residual_history[k - 1] : 0.0;
+        const bool residual_ok = fnorm <= std::max(atol, rtol * r.residual0);
+        if (residual_ok
+            && r.error_estimate
+                   <= std::max(p.atol_increment, p.rtol_increment * distance(x, p.x0, p.work)))
+        {
+          *reason = SNES_CONVERGED_FNORM_RELATIVE;
+          p.converged = true;
+          r.reason = "residual and increment tolerances";
+        }
+        else if (k > 0 && !residual_ok)
+        {
+          PetscReal xnorm;
+          GELX_PETSC(VecNorm(x, NORM_2, &xnorm));
+          if (step <= stol * xnorm)
+          {
+            *reason = SNES_DIVERGED_LOCAL_MIN;
+            r.reason = "stagnated: the step fell below stol |x| before |R| reached its tolerance";
+          }
+        }
+        if (*reason == SNES_CONVERGED_ITERATING && k >= max_it)
+        {
+          *reason = SNES_DIVERGED_MAX_IT;
+          r.reason = "no convergence in " + std::to_string(max_it) + " iterations";
+        }
+      });
+}
+} // namespace
 
 NewtonSolver::NewtonSolver(MPI_Comm comm, const std::string& prefix)
     : _comm(comm), _prefix(prefix)
 {
-  _ksp = create_linear_solver(comm, prefix);
+  set_default_option(prefix, "snes_rtol", "1e-10");
+  set_default_option(prefix, "snes_atol", "1e-12");
+  set_default_option(prefix, "snes_stol", "1e-14");
+  set_default_option(prefix, "snes_max_it", "25");
+  default_to_direct_solver(prefix);
+  GELX_PETSC(SNESCreate(comm, &_snes));
+  GELX_PETSC(SNESSetOptionsPrefix(_snes, prefix.c_str()));
+  // 1e-8: the solution to about the digits the residual tolerance leaves (a residual reduced
+  // by 1e-10 with a condition number ~1e2 leaves an error of ~1e-8 of the change)
+  _progress.rtol_increment = real_option(prefix, "rtol_increment", 1e-8);
+  _progress.atol_increment = real_option(prefix, "atol_increment", 1e-14);
+  _progress.admissible_halvings = int_option(prefix, "admissible_halvings", 8);
 }
 
 NewtonSolver::~NewtonSolver()
 {
-  KSPDestroy(&_ksp);
+  if (_snes)
+  {
+    void* ctx = nullptr;
+    SNESGetFunction(_snes, nullptr, nullptr, &ctx);
+    delete static_cast<Context*>(ctx);
+  }
+  SNESDestroy(&_snes);
   MatDestroy(&_A);
-  VecDestroy(&_r);
-  VecDestroy(&_du);
-  VecDestroy(&_x_trial_base);
-  VecDestroy(&_x_start);
+  for (Vec* v : {&_r, &_x, &_progress.x0, &_progress.x_previous, &_progress.work})
+    VecDestroy(v);
+}
+
+void NewtonSolver::set_up(NonlinearSystem& system)
+{
+  _progress.system = &system;
+  _A = system.create_matrix();
+  _r = system.create_vector();
+  _x = system.create_vector();
+  for (Vec* v : {&_progress.x0, &_progress.x_previous, &_progress.work})
+    *v = system.create_vector();
+  auto* context = new Context{&_progress, nullptr};
+  GELX_PETSC(SNESSetFunction(_snes, _r, form_residual, context));
+  GELX_PETSC(SNESSetJacobian(_snes, _A, _A, form_tangent, context));
+  GELX_PETSC(SNESSetUpdate(_snes, commit_iterate));
+  GELX_PETSC(SNESSetConvergenceTest(_snes, converged, context, nullptr));
+  system.configure(_snes);
+  GELX_PETSC(SNESSetFromOptions(_snes));
+  SNESLineSearch linesearch;
+  GELX_PETSC(SNESGetLineSearch(_snes, &linesearch));
+  GELX_PETSC(SNESLineSearchSetPreCheck(linesearch, admissible_step, context));
+  GELX_PETSC(SNESLineSearchSetPostCheck(linesearch, count_reduction, context));
+}
+
+bool NewtonSolver::predict(NonlinearSystem& system)
+{
+  Progress& p = _progress;
+  NewtonReport& r = p.report;
+  system.set_state(_x);
+  GELX_PETSC(VecCopy(_x, p.x0));
+  system.residual(_r);
+  PetscReal r0, atol;
+  GELX_PETSC(VecNorm(_r, NORM_2, &r0));
+  GELX_PETSC(SNESGetTolerances(_snes, &atol, nullptr, nullptr, nullptr, nullptr));
+  r.residual0 = r0;
+  r.residual_history = {r0};
+  if (!(r0 > atol)) // converged already, or not finite: SNES reports either
+    return false;
+  system.commit();
+  system.tangent(_A);
+  KSP ksp;
+  GELX_PETSC(SNESGetKSP(_snes, &ksp));
+  GELX_PETSC(KSPSetOperators(ksp, _A, _A));
+  GELX_PETSC(KSPSolve(ksp, _r, p.work));
+  KSPConvergedReason reason;
+  GELX_PETSC(KSPGetConvergedReason(ksp, &reason));
+  if (reason < 0)
+    return false; // SNES meets the same failure and reports it
+  for (int k = 0; k <= p.admissible_halvings; ++k, ++r.backtracks)
+  {
+    GELX_PETSC(VecWAXPY(p.x_previous, -1.0, p.work, p.x0));
+    system.set_state(p.x_previous);
+    if (system.admissible())
+      break;
+    GELX_PETSC(VecScale(p.work, 0.5));
+  }
+  GELX_PETSC(VecCopy(p.x_previous, _x));
+  GELX_PETSC(VecCopy(p.x0, p.x_previous)); // the convergence test measures the step from it
+  r.residual_history.push_back(r0); // replaced by the predicted state's residual
+  return true;
+}
+
+void NewtonSolver::begin(NonlinearSystem& system)
+{
+  if (!_progress.system)
+    set_up(system);
+  else if (_progress.system != &system)
+    throw std::logic_error("NewtonSolver '" + _prefix + "' serves one system");
+  _progress.report = NewtonReport{};
+  _progress.converged = false;
+  // SNES iterates on a vector of its own: its line searches evaluate trial states, which
+  // set_state() copies into the system, and must not overwrite their base point
+  GELX_PETSC(VecCopy(system.unknowns(), _x));
 }
 
 NewtonReport NewtonSolver::solve(NonlinearSystem& system)
 {
-  const double rtol = real_option(_prefix, "rtol", 1e-10);
-  const double atol = real_option(_prefix, "atol", 1e-12);
-  // 1e-8: the solution to about half the digits the residual test asks for (e.g. a residual
-  // reduced by 1e-10 with a condition number ~1e2 leaves an error of ~1e-8 of the change)
-  const double rtol_increment = real_option(_prefix, "rtol_increment", 1e-8);
-  const double atol_increment = real_option(_prefix, "atol_increment", 1e-14);
-  const double stol = real_option(_prefix, "stol", 1e-14);
-  const int max_it = int_option(_prefix, "max_it", 25);
-  const int max_backtracks = int_option(_prefix, "max_backtracks", 8);
-  const std::string linesearch = string_option(_prefix, "linesearch", "bt");
-  if (linesearch != "bt" && linesearch != "basic")
-    throw std::runtime_error("-" + _prefix + "linesearch must be bt or basic, not " + linesearch);
-  const bool monitor = int_option(_prefix, "monitor", 1) != 0
-                       && dolfinx::MPI::rank(_comm) == 0;
+  begin(system);
+  _progress.predicted = _progress.start_given = predict(system);
+  return run_snes(system);
+}
 
-  Vec x = system.unknowns();
-  if (!_A)
+NewtonReport NewtonSolver::correct(NonlinearSystem& system, Vec last_point)
+{
+  begin(system);
+  GELX_PETSC(VecCopy(last_point, _progress.x0));
+  _progress.predicted = false;
+  _progress.start_given = true;
+  return run_snes(system);
+}
+
+NewtonReport NewtonSolver::run_snes(NonlinearSystem& system)
+{
+  Context& context = context_of(_snes);
+  context.error = nullptr;
+  // Errors of the callbacks are rethrown below; PETSc must not print its trace for them
+  GELX_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  const PetscErrorCode ierr = SNESSolve(_snes, nullptr, _x);
+  GELX_PETSC(PetscPopErrorHandler());
+  if (context.error)
+    std::rethrow_exception(context.error);
+  GELX_PETSC(ierr);
+  system.set_state(_x);
+
+  NewtonReport& report = _progress.report;
+  PetscInt linear_iterations;
+  GELX_PETSC(SNESGetLinearSolveIterations(_snes, &linear_iterations));
+  report.linear_iterations = linear_iterations;
+  SNESConvergedReason reason;
+  GELX_PETSC(SNESGetConvergedReason(_snes, &reason));
+  report.converged = _progress.converged;
+  if (report.converged)
+    system.commit();
+  else if (report.reason.empty())
   {
-    _A = system.create_matrix();
-    _r = system.create_vector();
-    _du = system.create_vector();
-    _x_trial_base = system.create_vector();
-    _x_start = system.create_vector();
+    report.reason = SNESConvergedReasons[reason];
+    SNESLineSearch linesearch;
+    SNESLineSearchReason failure;
+    GELX_PETSC(SNESGetLineSearch(_snes, &linesearch));
+    GELX_PETSC(SNESLineSearchGetReason(linesearch, &failure));
+    if (failure == SNES_LINESEARCH_FAILED_DOMAIN || failure == SNES_LINESEARCH_FAILED_NANORINF)
+      report.reason += ": a trial state was inadmissible";
   }
-  GELX_PETSC(VecCopy(x, _x_start));
-
-  NewtonReport report;
-  auto residual_norm = [&]()
-  {
-    system.residual(_r);
-    PetscReal n;
-    GELX_PETSC(VecNorm(_r, NORM_2, &n));
-    return static_cast<double>(n);
-  };
-
-  double r_norm = residual_norm();
-  report.residual0 = r_norm;
-  report.residual_history.push_back(r_norm);
-  if (monitor)
-    std::printf("    %3s  %-11s %-11s %-11s %-7s %s\n", "it", "|R|", "|R|/|R0|", "|du|", "step",
-                "ksp");
-  if (monitor)
-    std::printf("    %3d  %-11.4e %-11.4e\n", 0, r_norm, 1.0);
-  if (!std::isfinite(r_norm))
-  {
-    report.reason = "residual is not finite at the initial iterate";
-    return report;
-  }
-
-  const double residual_tolerance = std::max(atol, rtol * report.residual0);
-  double error_estimate = 0; // no step taken yet: u_0 is what the residual test judges
-  for (int it = 1;; ++it)
-  {
-    if (r_norm <= residual_tolerance)
-    {
-      GELX_PETSC(VecAXPY(_x_start, -1.0, x)); // u_0 - u_k
-      PetscReal change;
-      GELX_PETSC(VecNorm(_x_start, NORM_2, &change));
-      GELX_PETSC(VecAXPY(_x_start, 1.0, x));
-      if (error_estimate <= std::max(atol_increment, rtol_increment * change))
-      {
-        report.converged = true;
-        report.reason = "residual and increment tolerances";
-        break;
-      }
-    }
-    if (it > max_it)
-    {
-      report.reason = "no convergence in " + std::to_string(max_it) + " iterations";
-      break;
-    }
-
-    // Newton direction: K du = -R
-    system.tangent(_A);
-    GELX_PETSC(KSPSetOperators(_ksp, _A, _A));
-    GELX_PETSC(KSPSolve(_ksp, _r, _du));
-    KSPConvergedReason ksp_reason;
-    GELX_PETSC(KSPGetConvergedReason(_ksp, &ksp_reason));
-    PetscInt ksp_its;
-    GELX_PETSC(KSPGetIterationNumber(_ksp, &ksp_its));
-    report.linear_iterations += ksp_its;
-    if (ksp_reason < 0)
-    {
-      report.reason = std::string("linear solver failed: ") + KSPConvergedReasons[ksp_reason];
-      break;
-    }
-    GELX_PETSC(VecScale(_du, -1.0));
-
-    // Line search on the step length a
-    GELX_PETSC(VecCopy(x, _x_trial_base));
-    double step = 1.0, trial_norm = NAN;
-    bool accepted = false;
-    for (int k = 0; k <= max_backtracks; ++k, step *= 0.5)
-    {
-      GELX_PETSC(VecWAXPY(x, step, _du, _x_trial_base));
-      system.unknowns_changed();
-      if (k > 0)
-        ++report.backtracks;
-      if (!system.admissible())
-        continue;
-      trial_norm = residual_norm();
-      if (!std::isfinite(trial_norm))
-        continue;
-      // The first correction carries the increment of the Dirichlet values (see
-      // NonlinearProblem): its residual is not comparable with the lifted one before it.
-      if (linesearch == "basic" || it == 1 || trial_norm <= (1 - 1e-4 * step) * r_norm)
-      {
-        accepted = true;
-        break;
-      }
-    }
-    PetscReal du_norm, x_norm;
-    GELX_PETSC(VecNorm(_du, NORM_2, &du_norm));
-    GELX_PETSC(VecNorm(x, NORM_2, &x_norm));
-    report.iterations = it;
-    if (monitor)
-      std::printf("    %3d  %-11.4e %-11.4e %-11.4e %-7.4g %d\n", it, trial_norm,
-                  trial_norm / report.residual0, du_norm, accepted ? step : 0.0, (int)ksp_its);
-    if (!accepted)
-    {
-      report.reason = "line search found no admissible decrease";
-      break;
-    }
-    error_estimate = step * du_norm * trial_norm / r_norm;
-    r_norm = trial_norm;
-    report.residual_history.push_back(r_norm);
-    if (step * du_norm <= stol * x_norm && r_norm > residual_tolerance)
-    {
-      report.reason = "stagnated: the step fell below stol |u| before |R| reached its tolerance";
-      break;
-    }
-  }
-  report.residual = r_norm;
-  report.error_estimate = error_estimate;
   return report;
 }
 

@@ -1,10 +1,11 @@
 #pragma once
 /// @file newton.h
-/// Newton's method with a backtracking line search that also rejects inadmissible iterates.
+/// Newton's method for a NonlinearSystem: PETSc SNES, with gelx's admissibility check and
+/// convergence test as hooks into it.
 
-#include "problem.h"
+#include "system.h"
 #include <mpi.h>
-#include <petscksp.h>
+#include <petscsnes.h>
 #include <string>
 #include <vector>
 
@@ -17,36 +18,48 @@ struct NewtonReport
   bool converged = false;
   int iterations = 0;
   int linear_iterations = 0;
-  int backtracks = 0;
-  double residual0 = 0;  ///< |R| at the start
-  double residual = 0;   ///< |R| at the end
-  double error_estimate = 0; ///< estimated |u - u_exact| at the end (see NewtonSolver)
-  std::string reason;    ///< why it stopped
-  /// |R| at the start and after each accepted iteration (for convergence-rate checks)
+  int backtracks = 0;        ///< step halvings for admissibility plus line-search reductions
+  double residual0 = 0;      ///< |R| at the start
+  double residual = 0;       ///< |R| at the end
+  double error_estimate = 0; ///< estimated |x - x_exact| at the end (see NewtonSolver)
+  std::string reason;        ///< why it stopped
+  /// |R| at the start and after each iteration (for convergence-rate checks)
   std::vector<double> residual_history;
 };
 
-/// Newton's method for R(u) = 0.
+/// Solves R(x) = 0 for a NonlinearSystem with PETSc SNES, from the system's current state.
 ///
-/// Each iteration solves K du = -R with a PETSc KSP, then tries u + a du with a = 1, 1/2, ...:
-/// a trial is rejected when its residual is not finite, when det F <= 0 somewhere
-/// (NonlinearSystem::admissible) or, with the `bt` line search, when |R| does not decrease
-/// (Armijo, c = 1e-4; not tested on the first correction, which carries the increment of the
-/// prescribed values).
+/// Every choice PETSc offers goes through the options database with the solver's prefix
+/// (`newton_` by default), as PETSc documents it: -newton_snes_type (newtonls; vinewtonrsls
+/// for bounds), -newton_snes_linesearch_type (bt by default; basic, l2, cp),
+/// -newton_snes_monitor, -newton_snes_converged_reason, -newton_snes_rtol, _atol, _stol,
+/// _max_it, -newton_snes_test_jacobian, and the linear solver's -newton_ksp_* and -newton_pc_*
+/// (default: a direct solve, MUMPS LU).
 ///
-/// Convergence needs both tests of deal.II's step-44, on the residual and on the increment:
-///   |R_k| <= max(atol, rtol |R_0|)   and   e_k <= max(atol_increment, rtol_increment |u_k - u_0|),
-/// where e_k = |a_k du_k| |R_k| / |R_(k-1)| estimates the next increment, i.e. the error of u_k:
-/// Newton's next step is K^-1 R_k, and the last step measured |K^-1| as |a_k du_k| / |R_(k-1)|.
-/// Using the estimate instead of an extra iteration's increment proves a linear solve converged
-/// in one iteration, as it is. A solve whose step falls below stol |u| before both tests pass
-/// has stagnated: that is a failure, never a convergence.
-///
-/// Options, prefix `newton_` by default (`-newton_rtol 1e-10` ...): rtol, atol, rtol_increment,
-/// atol_increment, stol, max_it, linesearch (bt|basic), max_backtracks, monitor (print the
-/// per-iteration table; default on rank 0, `-newton_monitor 0` silences it). The linear solver
-/// reads the same prefix (`-newton_ksp_type`, `-newton_pc_type`, ...); its default is a direct
-/// solve with MUMPS.
+/// gelx adds, as hooks of that SNES, what it does not provide:
+/// - Admissibility, a line-search pre-check: a Newton step that would make the state
+///   inadmissible (det F <= 0, or J <= phi0 for a gel, at a quadrature point) is halved until
+///   it does not, before any line search evaluates the residual there: the energies are not
+///   defined beyond, and PETSc's line searches only cut a step whose residual is Inf at their
+///   first trial. Up to -PREFIX_admissible_halvings (8) halvings.
+/// - The convergence test of deal.II's step-44, on the residual and on the increment:
+///     |R_k| <= max(atol, rtol |R_0|)  and  e_k <= max(atol_increment, rtol_increment |x_k - x_0|)
+///   with e_k = |x_k - x_(k-1)| |R_k| / |R_(k-1)| the next increment estimated from the last
+///   contraction (Newton's next step is K^-1 R_k, and the last step measured |K^-1|), i.e. the
+///   error of x_k, and x_0 the solve's start (the last converged point of a path): the error
+///   must be small against what the step changed. A linear problem converges in one iteration,
+///   and SNES's default acceptance of a small step alone (snes_stol) is a stagnation failure
+///   here, never a convergence.
+///   -PREFIX_snes_rtol (1e-10), _atol (1e-12), _stol (1e-14) and _max_it (25) are PETSc's;
+///   -PREFIX_rtol_increment (1e-8) and -PREFIX_atol_increment (1e-14) are gelx's.
+/// - Per-iteration system updates (SNESSetUpdate): NonlinearSystem::commit().
+/// - A predictor: the first Newton step of a solve is taken whole (halved only for
+///   admissibility) before SNES takes over. It carries a load step's increment, often the
+///   increment of prescribed values (NonlinearProblem's lifting), and its residual is not
+///   comparable with the one before it, so a decrease test (bt) would cut it to a crawl:
+///   measured on the inflated shell, bt shortened every step to 0.1 and did not converge in 25
+///   iterations where the whole first step converges in 4. The tolerances refer to the state
+///   before it.
 class NewtonSolver
 {
 public:
@@ -55,19 +68,46 @@ public:
   NewtonSolver(const NewtonSolver&) = delete;
   NewtonSolver& operator=(const NewtonSolver&) = delete;
 
-  /// Solve from the current unknowns of `system`; on failure the unknowns are left at the last
-  /// iterate (the caller restores a saved state).
+  /// Solve from the current state of `system`, starting with the predictor; on failure the
+  /// state is the last iterate (the caller restores a saved state). A solver serves one system
+  /// (its first).
   NewtonReport solve(NonlinearSystem& system);
+  /// Solve from the current state, a prediction the caller made from `last_point` (a
+  /// continuation's corrector): no predictor; the increment test measures from `last_point`.
+  NewtonReport correct(NonlinearSystem& system, Vec last_point);
 
-  KSP ksp() const { return _ksp; }
+  SNES snes() const { return _snes; }
   const std::string& prefix() const { return _prefix; }
 
+  /// What the convergence test and the hooks keep during a solve (public for the C callbacks).
+  struct Progress
+  {
+    NonlinearSystem* system = nullptr;
+    Vec x0 = nullptr, x_previous = nullptr, work = nullptr;
+    double rtol_increment = 0, atol_increment = 0;
+    int admissible_halvings = 0;
+    bool predicted = false;  ///< the solve began with the predictor
+    bool start_given = false; ///< x0 was set before SNES started (predictor or last point)
+    double step_norm = 0; ///< |Y| after the admissibility check, before the line search
+    NewtonReport report;
+    bool converged = false;
+  };
+
 private:
+  /// Bind the SNES to `system` (first solve): callbacks, matrices, hooks, options.
+  void set_up(NonlinearSystem& system);
+  /// The predictor step from _x (see the class comment); false when _x already converged.
+  bool predict(NonlinearSystem& system);
+  /// SNESSolve from _x and the report.
+  NewtonReport run_snes(NonlinearSystem& system);
+  /// Bind to `system` on first use and reset the report.
+  void begin(NonlinearSystem& system);
   MPI_Comm _comm;
   std::string _prefix;
-  KSP _ksp = nullptr;
+  SNES _snes = nullptr;
   Mat _A = nullptr;
-  Vec _r = nullptr, _du = nullptr, _x_trial_base = nullptr, _x_start = nullptr;
+  Vec _r = nullptr, _x = nullptr;
+  Progress _progress;
 };
 
 } // namespace gelx

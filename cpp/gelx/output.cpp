@@ -103,6 +103,42 @@ NodalField::NodalField(const std::string& name,
 
 void NodalField::update() { _f->interpolate(*_u); }
 
+void FieldSet::add(const std::string& name,
+                   std::shared_ptr<const dolfinx::fem::Function<double>> u)
+{
+  _nodal.emplace_back(name, std::move(u));
+}
+
+void FieldSet::add(const std::string& name,
+                   std::shared_ptr<const dolfinx::fem::Expression<double>> e)
+{
+  _cells.emplace_back(name, std::move(e));
+}
+
+std::shared_ptr<const dolfinx::fem::Function<double>> FieldSet::nodal(const std::string& name) const
+{
+  for (const NodalField& f : _nodal)
+    if (f.function()->name == name)
+      return f.function();
+  throw std::runtime_error("no nodal field '" + name + "'");
+}
+
+std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>> FieldSet::update()
+{
+  std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>> fields;
+  for (NodalField& f : _nodal)
+  {
+    f.update();
+    fields.push_back(f.function());
+  }
+  for (CellField& f : _cells)
+  {
+    f.update();
+    fields.insert(fields.end(), f.functions().begin(), f.functions().end());
+  }
+  return fields;
+}
+
 namespace
 {
 /// Create `folder` for a new run's results and clear what an earlier run left there, so that

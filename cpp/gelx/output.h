@@ -59,6 +59,26 @@ private:
   std::shared_ptr<dolfinx::fem::Function<double>> _f;
 };
 
+/// The fields a scene writes at every step, updated and written together: displacements at
+/// the mesh nodes (NodalField), stresses and energy densities per cell (CellField).
+class FieldSet
+{
+public:
+  /// A field at the nodes: u interpolated into vertex values.
+  void add(const std::string& name, std::shared_ptr<const dolfinx::fem::Function<double>> u);
+  /// A field per cell, from an Expression (a 3x3 tensor gives its components, von Mises and
+  /// pressure; see CellField).
+  void add(const std::string& name, std::shared_ptr<const dolfinx::fem::Expression<double>> e);
+  /// Update every field at the current state; returns them for writing.
+  std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>> update();
+  /// The vertex values of the nodal field `name` (at the last update).
+  std::shared_ptr<const dolfinx::fem::Function<double>> nodal(const std::string& name) const;
+
+private:
+  std::vector<NodalField> _nodal;
+  std::vector<CellField> _cells;
+};
+
 /// A triangle of a surface, its vertices counter-clockwise seen from outside.
 using Triangle = std::array<std::array<double, 3>, 3>;
 

@@ -85,7 +85,17 @@ Parameters::Value parse_as(const Parameters::Value& like, const std::string& nam
     throw InputError(bad + kinds[like.index()]);
   }
 }
+
+/// `valid` for a Value holding a T (or none).
+template <typename T, typename Check>
+std::function<std::string(const Parameters::Value&)> check_of(Check valid)
+{
+  if (!valid)
+    return nullptr;
+  return [valid](const Parameters::Value& v) { return valid(std::get<T>(v)); };
+}
 } // namespace
+
 
 void Parameters::declare(const std::string& section, const std::string& name, Value value,
                          const std::string& help,
@@ -100,17 +110,13 @@ void Parameters::declare(const std::string& section, const std::string& name, Va
 void Parameters::add(const std::string& section, const std::string& name, double value,
                      const std::string& help, std::function<std::string(double)> valid)
 {
-  declare(section, name, value, help,
-          valid ? [valid](const Value& v) { return valid(std::get<double>(v)); }
-                : std::function<std::string(const Value&)>());
+  declare(section, name, value, help, check_of<double>(valid));
 }
 
 void Parameters::add(const std::string& section, const std::string& name, int value,
                      const std::string& help, std::function<std::string(int)> valid)
 {
-  declare(section, name, value, help,
-          valid ? [valid](const Value& v) { return valid(std::get<int>(v)); }
-                : std::function<std::string(const Value&)>());
+  declare(section, name, value, help, check_of<int>(valid));
 }
 
 void Parameters::add(const std::string& section, const std::string& name, bool value,
@@ -123,9 +129,7 @@ void Parameters::add(const std::string& section, const std::string& name, const 
                      const std::string& help,
                      std::function<std::string(const std::string&)> valid)
 {
-  declare(section, name, std::string(value), help,
-          valid ? [valid](const Value& v) { return valid(std::get<std::string>(v)); }
-                : std::function<std::string(const Value&)>());
+  declare(section, name, std::string(value), help, check_of<std::string>(valid));
 }
 
 const Parameters::Entry& Parameters::entry(const std::string& name) const
@@ -146,6 +150,41 @@ void Parameters::set(const std::string& name, const std::string& text)
       throw InputError("parameter '" + name + "' = " + to_text(v) + ": " + why);
   }
   _entries[name].value = v;
+  if (e.assign)
+    e.assign(v);
+}
+
+template <typename T, typename Check>
+void Parameters::bind_target(const std::string& section, const std::string& name, T& target,
+                             const std::string& help, Check valid)
+{
+  declare(section, name, target, help, check_of<T>(valid));
+  _entries[name].assign = [&target](const Value& v) { target = std::get<T>(v); };
+}
+
+void Parameters::bind(const std::string& section, const std::string& name, double& target,
+                      const std::string& help, std::function<std::string(double)> valid)
+{
+  bind_target(section, name, target, help, valid);
+}
+
+void Parameters::bind(const std::string& section, const std::string& name, int& target,
+                      const std::string& help, std::function<std::string(int)> valid)
+{
+  bind_target(section, name, target, help, valid);
+}
+
+void Parameters::bind(const std::string& section, const std::string& name, bool& target,
+                      const std::string& help)
+{
+  bind_target(section, name, target, help, std::function<std::string(bool)>());
+}
+
+void Parameters::bind(const std::string& section, const std::string& name, std::string& target,
+                      const std::string& help,
+                      std::function<std::string(const std::string&)> valid)
+{
+  bind_target(section, name, target, help, valid);
 }
 
 std::vector<std::string> Parameters::parse(int argc, char* argv[], bool* help_requested)

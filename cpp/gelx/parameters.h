@@ -42,6 +42,19 @@ public:
            const std::string& help,
            std::function<std::string(const std::string&)> valid = nullptr);
 
+  /// Declare a parameter whose value lives in `target`, a member of a scene's typed struct:
+  /// its default is target's current value, and every change is written there, so that the
+  /// struct is filled when the command line is read and each name is spelled once.
+  void bind(const std::string& section, const std::string& name, double& target,
+            const std::string& help, std::function<std::string(double)> valid = nullptr);
+  void bind(const std::string& section, const std::string& name, int& target,
+            const std::string& help, std::function<std::string(int)> valid = nullptr);
+  void bind(const std::string& section, const std::string& name, bool& target,
+            const std::string& help);
+  void bind(const std::string& section, const std::string& name, std::string& target,
+            const std::string& help,
+            std::function<std::string(const std::string&)> valid = nullptr);
+
   /// Read `--name value` pairs and `--scene FILE`; `--help` sets `help_requested`. Returns the
   /// remaining arguments (PETSc options `-name [value]`), argv[0] first. Throws InputError,
   /// also for a word that is neither (PETSc would ignore it silently).
@@ -75,8 +88,12 @@ private:
     Value value;
     std::string help;
     std::function<std::string(const Value&)> valid;
+    std::function<void(const Value&)> assign; ///< writes a bound parameter's target
   };
   const Entry& entry(const std::string& name) const;
+  template <typename T, typename Check>
+  void bind_target(const std::string& section, const std::string& name, T& target,
+                   const std::string& help, Check valid);
   void declare(const std::string& section, const std::string& name, Value value,
                const std::string& help, std::function<std::string(const Value&)> valid);
   std::map<std::string, Entry> _entries;

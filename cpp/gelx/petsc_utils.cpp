@@ -1,5 +1,7 @@
 #include "petsc_utils.h"
 
+#include <set>
+
 namespace gelx
 {
 
@@ -13,6 +15,15 @@ void petsc_check(PetscErrorCode ierr, const char* call)
                            + (text ? text : "unknown error"));
 }
 
+namespace
+{
+std::set<std::string>& defaults_set()
+{
+  static std::set<std::string> names;
+  return names;
+}
+} // namespace
+
 void set_default_option(const std::string& prefix, const std::string& name,
                         const std::string& value)
 {
@@ -20,15 +31,25 @@ void set_default_option(const std::string& prefix, const std::string& name,
   PetscBool is_set = PETSC_FALSE;
   GELX_PETSC(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &is_set));
   if (!is_set)
+  {
     GELX_PETSC(PetscOptionsSetValue(nullptr, option.c_str(),
                                     value.empty() ? nullptr : value.c_str()));
+    defaults_set().insert(prefix + name);
+  }
 }
 
-KSP create_linear_solver(MPI_Comm comm, const std::string& prefix)
+bool is_default_option(const std::string& option) { return defaults_set().count(option) > 0; }
+
+void default_to_direct_solver(const std::string& prefix)
 {
   set_default_option(prefix, "ksp_type", "preonly");
   set_default_option(prefix, "pc_type", "lu");
   set_default_option(prefix, "pc_factor_mat_solver_type", "mumps");
+}
+
+KSP create_linear_solver(MPI_Comm comm, const std::string& prefix)
+{
+  default_to_direct_solver(prefix);
   KSP ksp;
   GELX_PETSC(KSPCreate(comm, &ksp));
   GELX_PETSC(KSPSetOptionsPrefix(ksp, prefix.c_str()));

@@ -21,9 +21,16 @@ void petsc_check(PetscErrorCode ierr, const char* call);
 void set_default_option(const std::string& prefix, const std::string& name,
                         const std::string& value = "");
 
-/// A KSP reading options with `prefix`, whose default is a direct solve (MUMPS LU): robust
-/// for the problem sizes of the scenes; `-<prefix>ksp_type gmres -<prefix>pc_type gamg` etc.
-/// select an iterative one.
+/// Whether set_default_option set `option` (its name without the dash): a default that a
+/// user's other choices may leave unread (MUMPS for an iterative solve) is no mistake.
+bool is_default_option(const std::string& option);
+
+/// Make a direct solve (MUMPS LU) the default of the linear solver with options `prefix`:
+/// robust for the problem sizes of the scenes; `-<prefix>ksp_type gmres -<prefix>pc_type gamg`
+/// etc. select an iterative one.
+void default_to_direct_solver(const std::string& prefix);
+
+/// A KSP reading options with `prefix`, a direct solve by default (default_to_direct_solver).
 KSP create_linear_solver(MPI_Comm comm, const std::string& prefix);
 
 /// Value of a real option `-<prefix><name>`, or `fallback` when unset.

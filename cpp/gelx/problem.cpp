@@ -1,6 +1,7 @@
 #include "problem.h"
 #include "petsc_utils.h"
 
+#include <algorithm>
 #include <cmath>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
@@ -24,6 +25,26 @@ NonlinearProblem::NonlinearProblem(std::shared_ptr<dolfinx::fem::Function<double
       _lifting(int_option("", "dirichlet_lifting", 1) != 0)
 {
   _x = dolfinx::la::petsc::create_vector_wrap(*_u->x());
+  PetscInt owned;
+  GELX_PETSC(VecGetLocalSize(_x, &owned));
+  _identity.resize(owned);
+  std::iota(_identity.begin(), _identity.end(), PetscInt(0));
+}
+
+std::vector<PetscInt> NonlinearProblem::prescribed_rows() const
+{
+  const std::int32_t owned = _identity.size();
+  std::vector<PetscInt> rows;
+  for (const auto& bc : _bcs)
+  {
+    const auto [dofs, num_owned] = bc->dof_indices();
+    for (std::int32_t i = 0; i < num_owned; ++i)
+      if (dofs[i] < owned)
+        rows.push_back(dofs[i]);
+  }
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  return rows;
 }
 
 NonlinearProblem::~NonlinearProblem()

@@ -2,6 +2,8 @@
 /// @file problem.h
 /// The discrete equilibrium problem R(u) = 0 that the Newton solver and the load stepper drive.
 
+#include "system.h"
+
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/Form.h>
@@ -15,29 +17,6 @@
 
 namespace gelx
 {
-
-/// What a nonlinear solver needs of a problem: the unknown vector, the residual and tangent at
-/// it, and whether it is admissible (e.g. no inverted element).
-///
-/// Later extensions implement this interface on top of a NonlinearProblem: a reduced space for
-/// multipoint constraints (u = P u_r + g), one extra unknown for arc-length continuation.
-class NonlinearSystem
-{
-public:
-  virtual ~NonlinearSystem() = default;
-  /// The unknowns (owned entries are what the solver updates).
-  virtual Vec unknowns() = 0;
-  /// To be called after the owned entries of unknowns() changed.
-  virtual void unknowns_changed() = 0;
-  /// Residual at the current unknowns; zero in constrained rows.
-  virtual void residual(Vec r) = 0;
-  /// Tangent dR/du at the current unknowns; identity in constrained rows.
-  virtual void tangent(Mat A) = 0;
-  virtual Vec create_vector() const = 0;
-  virtual Mat create_matrix() const = 0;
-  /// False when the current unknowns are physically inadmissible (det F <= 0 somewhere).
-  virtual bool admissible() const { return true; }
-};
 
 /// R(u) = 0 from a UFL residual form and its tangent, with Dirichlet conditions u_D = g.
 ///
@@ -75,6 +54,9 @@ public:
   Vec create_vector() const override;
   Mat create_matrix() const override;
   bool admissible() const override;
+  std::vector<PetscInt> prescribed_rows() const override;
+  NonlinearProblem& problem() override { return *this; }
+  const std::vector<PetscInt>& unknown_of_problem_dof() const override { return _identity; }
 
   /// Smallest value of the admissibility expression over the quadrature points of all cells
   /// (all ranks); +inf without one.
@@ -96,6 +78,7 @@ private:
   /// Assemble R(u) into the owned and ghost entries of f, without sending ghosts to owners.
   void assemble_local(Vec f) const;
   Vec _x = nullptr; // PETSc view of _u's coefficients (shares memory, with ghosts)
+  std::vector<PetscInt> _identity; // unknown_of_problem_dof()
 };
 
 } // namespace gelx

@@ -28,7 +28,7 @@ rows = []
 for degree, h in runs:
     folder = out / f"p{degree}_h{h}"
     subprocess.run(["mpirun", "-np", np_ranks, str(binary), "--output", str(folder),
-                    "--degree", str(degree), "--h", str(h), "-newton_monitor", "0"],
+                    "--degree", str(degree), "--h", str(h)],
                    check=True, stdout=subprocess.DEVNULL,
                    env=dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
                             OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1"))

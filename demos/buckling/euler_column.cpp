@@ -4,6 +4,7 @@
 #include <cmath>
 #include <dolfinx/fem/utils.h>
 #include <gelx/load_stepping.h>
+#include <gelx/problem.h>
 #include <gelx/newton.h>
 #include <gelx/petsc_utils.h>
 
@@ -13,7 +14,9 @@ namespace gelx::scenes
 {
 
 EulerColumn::EulerColumn(MPI_Comm comm, ColumnParameters p)
-    : _p(p), _box(box_mesh(comm, {p.tx, p.ty, p.L}, p.cells))
+    : _p(p), _box(box_mesh(comm, {p.tx, p.ty, p.L},
+                                        {std::size_t(p.cells[0]), std::size_t(p.cells[1]),
+                                         std::size_t(p.cells[2])}))
 {
   auto V = std::make_shared<fem::FunctionSpace>(
       fem::create_functionspace(functionspace_form_column_residual, "u", _box.mesh));
@@ -32,7 +35,7 @@ EulerColumn::EulerColumn(MPI_Comm comm, ColumnParameters p)
 
   _bcs = std::make_unique<DirichletConditions>(V, _box.facet_tags);
   _bcs->clamp(_box.tag("z_min"));
-  if (p.clamped_clamped)
+  if (p.clamped_clamped())
   {
     // The shortening that carries lambda Euler loads in the straight column
     const double shortening = euler_load() * p.L / (youngs_modulus() * p.tx * p.ty);
@@ -59,19 +62,19 @@ EulerColumn::form(ufcx_form* f, std::vector<std::shared_ptr<const fem::FunctionS
 
 double EulerColumn::slenderness() const
 {
-  return (_p.clamped_clamped ? 0.5 : 2.0) * _p.L * std::sqrt(12.0) / _p.tx;
+  return (_p.clamped_clamped() ? 0.5 : 2.0) * _p.L * std::sqrt(12.0) / _p.tx;
 }
 
 double EulerColumn::euler_load() const
 {
   const double I = _p.ty * std::pow(_p.tx, 3) / 12;
-  const double effective_length = (_p.clamped_clamped ? 0.5 : 2.0) * _p.L;
+  const double effective_length = (_p.clamped_clamped() ? 0.5 : 2.0) * _p.L;
   return M_PI * M_PI * youngs_modulus() * I / (effective_length * effective_length);
 }
 
 void EulerColumn::set_load_factor(double lambda)
 {
-  if (_p.clamped_clamped)
+  if (_p.clamped_clamped())
     _bcs->update(lambda);
   else
     _traction->value = {lambda * euler_load() / (_p.tx * _p.ty)};
@@ -93,15 +96,14 @@ std::vector<BucklingMode> EulerColumn::buckling_modes(int num_modes)
   // Its residual starts near 1e-7 and its round-off floor is ~1e-8 of that: converge relative
   // to it, not to the default atol, which one iteration meets with u still 5e-7 off, so that
   // the modes do not depend on the solver's stopping point (or on the rank count)
-  set_default_option("prebuckling_newton_", "atol", "0");
-  set_default_option("prebuckling_newton_", "rtol", "1e-7");
-  set_default_option("prebuckling_newton_", "monitor", "0");
+  set_default_option("prebuckling_newton_", "snes_atol", "0");
+  set_default_option("prebuckling_newton_", "snes_rtol", "1e-7");
   NewtonSolver newton(_box.mesh->comm(), "prebuckling_newton_");
   LoadSteppingOptions one_step;
   one_step.dt = one_step.dt_max = 1.0;
   LoadStepper(*_problem, newton, one_step,
               [&](double t) { set_load_factor(t * perturbation); })
-      .run([](const StepRecord&) {});
+      .run();
   _problem->tangent(KQ);
   // The perturbation in Euler loads, as the column carries it
   const double P = axial_force() / euler_load();
@@ -130,7 +132,7 @@ double EulerColumn::elastica_load_ratio(double d) const
 {
   // Cantilever elastica: d/L = 2k / K(k) and P/P_cr = (2 K(k) / pi)^2, k = sin(alpha/2) of
   // the tip rotation alpha; 2k/K(k) increases on (0, 0.8], up to d/L = 0.74
-  const double cantilever_d = _p.clamped_clamped ? 2 * d : d;
+  const double cantilever_d = _p.clamped_clamped() ? 2 * d : d;
   double lo = 1e-12, hi = 0.8;
   for (int i = 0; i < 100; ++i)
   {

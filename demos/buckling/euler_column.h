@@ -26,10 +26,11 @@ struct ColumnParameters
   double tx = 1.0;  ///< cross-section width along x (tx < ty: the column buckles in x)
   double ty = 1.5;  ///< cross-section depth along y
   double L = 30.0;  ///< length along z
-  std::array<std::size_t, 3> cells{2, 3, 40}; ///< box cells along x, y, z (six tetrahedra each)
+  std::array<int, 3> cells{2, 3, 40}; ///< box cells along x, y, z (six tetrahedra each)
   double G = 1.0;   ///< shear modulus
   double nu = 0.3;  ///< Poisson's ratio (bulk modulus K = 2G(1 + nu)/(3(1 - 2nu)))
-  bool clamped_clamped = false; ///< false: clamped-free (a cantilever)
+  std::string ends = "clamped-free"; ///< or "clamped-clamped"
+  bool clamped_clamped() const { return ends == "clamped-clamped"; }
 };
 
 /// The column on [0, tx] x [0, ty] x [0, L], clamped at z = 0.

@@ -20,70 +20,71 @@
 
 #include "euler_column.h"
 
-#include <chrono>
-#include <map>
-#include <tuple>
-#include <utility>
-#include <memory>
 #include <gelx/arclength.h>
-#include <gelx/load_stepping.h>
-#include <gelx/output.h>
 #include <gelx/petsc_utils.h>
+#include <gelx/problem.h>
 #include <gelx/program.h>
+#include <map>
+#include <memory>
+
+namespace
+{
+/// What the scene computes, and how far.
+struct Analyses
+{
+  int modes = 4;             ///< linear buckling modes
+  double imperfection = 0.01; ///< amplitude of the seeded mode 1, over tx
+  double max_deflection = 0.3; ///< each path is followed up to this d/L
+  int max_steps = 200;       ///< arc-length steps per path
+};
+} // namespace
 
 int main(int argc, char* argv[])
 {
   // 1. Scene parameters
+  gelx::scenes::ColumnParameters p;
+  Analyses a;
   gelx::Parameters prm;
-  const gelx::scenes::ColumnParameters d;
-  prm.add("geometry", "tx", d.tx, "cross-section width (the buckling direction)",
-          gelx::Parameters::positive);
-  prm.add("geometry", "ty", d.ty, "cross-section depth (> tx)", gelx::Parameters::positive);
-  prm.add("geometry", "L", d.L, "length", gelx::Parameters::positive);
-  prm.add("geometry", "nx", int(d.cells[0]), "box cells across tx", gelx::Parameters::at_least_one);
-  prm.add("geometry", "ny", int(d.cells[1]), "box cells across ty", gelx::Parameters::at_least_one);
-  prm.add("geometry", "nz", int(d.cells[2]), "box cells along L", gelx::Parameters::at_least_one);
-  prm.add("geometry", "ends", "clamped-free", "clamped-free or clamped-clamped",
-          [](const std::string& v)
-          { return v == "clamped-free" || v == "clamped-clamped" ? "" : "must be clamped-free or clamped-clamped"; });
-  prm.add("material", "G", d.G, "shear modulus", gelx::Parameters::positive);
-  prm.add("material", "nu", d.nu, "Poisson's ratio",
-          [](double v) { return v > -1 && v < 0.5 ? "" : "must be in (-1, 0.5)"; });
-  prm.add("analysis", "modes", 4, "buckling modes to compute", gelx::Parameters::at_least_one);
-  prm.add("analysis", "imperfection", 0.01, "amplitude of the seeded mode 1, over tx",
-          gelx::Parameters::positive);
-  prm.add("analysis", "max_deflection", 0.3, "follow each path up to this deflection d/L",
-          [](double v) { return v > 0 && v <= 0.35 ? "" : "must be in (0, 0.35]"; });
-  prm.add("analysis", "max_steps", 200, "largest number of arc-length steps per path",
-          gelx::Parameters::at_least_one);
+  prm.bind("geometry", "tx", p.tx, "cross-section width (the buckling direction)",
+           gelx::Parameters::positive);
+  prm.bind("geometry", "ty", p.ty, "cross-section depth (> tx)", gelx::Parameters::positive);
+  prm.bind("geometry", "L", p.L, "length", gelx::Parameters::positive);
+  prm.bind("geometry", "nx", p.cells[0], "box cells across tx", gelx::Parameters::at_least_one);
+  prm.bind("geometry", "ny", p.cells[1], "box cells across ty", gelx::Parameters::at_least_one);
+  prm.bind("geometry", "nz", p.cells[2], "box cells along L", gelx::Parameters::at_least_one);
+  prm.bind("geometry", "ends", p.ends, "clamped-free or clamped-clamped",
+           [](const std::string& v)
+           {
+             return v == "clamped-free" || v == "clamped-clamped"
+                        ? ""
+                        : "must be clamped-free or clamped-clamped";
+           });
+  prm.bind("material", "G", p.G, "shear modulus", gelx::Parameters::positive);
+  prm.bind("material", "nu", p.nu, "Poisson's ratio",
+           [](double v) { return v > -1 && v < 0.5 ? "" : "must be in (-1, 0.5)"; });
+  prm.bind("analysis", "modes", a.modes, "buckling modes to compute",
+           gelx::Parameters::at_least_one);
+  prm.bind("analysis", "imperfection", a.imperfection, "amplitude of the seeded mode 1, over tx",
+           gelx::Parameters::positive);
+  prm.bind("analysis", "max_deflection", a.max_deflection,
+           "follow each path up to this deflection d/L",
+           [](double v) { return v > 0 && v <= 0.35 ? "" : "must be in (0, 0.35]"; });
+  prm.bind("analysis", "max_steps", a.max_steps, "largest number of arc-length steps per path",
+           gelx::Parameters::at_least_one);
 
-  return gelx::run_program(argc, argv, "gelx-buckling", prm, [&](MPI_Comm comm)
+  return gelx::run_program(argc, argv, "gelx-buckling", prm, [&](gelx::Run& run)
   {
-    using clock = std::chrono::steady_clock;
-    auto seconds = [](clock::time_point t0)
-    { return std::chrono::duration<double>(clock::now() - t0).count(); };
-    gelx::scenes::ColumnParameters p;
-    p.tx = prm.real("tx");
-    p.ty = prm.real("ty");
-    p.L = prm.real("L");
-    p.cells = {std::size_t(prm.integer("nx")), std::size_t(prm.integer("ny")),
-               std::size_t(prm.integer("nz"))};
-    p.G = prm.real("G");
-    p.nu = prm.real("nu");
-    p.clamped_clamped = prm.text("ends") == "clamped-clamped";
     if (p.ty <= p.tx)
       throw gelx::InputError("the depth ty must exceed the width tx, so that the column "
                              "buckles in x");
-    const double max_deflection = prm.real("max_deflection");
-    const int max_steps = prm.integer("max_steps");
 
-    // 2. The column and its linear buckling modes
-    gelx::scenes::EulerColumn column(comm, p);
-    gelx::ResultsWriter writer(comm, prm.text("output"), column.mesh().mesh);
-    auto t0 = clock::now();
-    const auto modes = column.buckling_modes(prm.integer("modes"));
-    const double eigen_time = seconds(t0);
+    // 2. The column and its linear buckling modes ("time" in fields.xdmf: the mode number)
+    gelx::scenes::EulerColumn column(run.comm(), p);
+    gelx::ResultsWriter& results = run.results(column.mesh().mesh);
+    const double eigen_start = run.elapsed();
+    const auto modes = column.buckling_modes(a.modes);
     std::vector<nlohmann::json> eigen_rows;
+    std::vector<double> critical;
     for (std::size_t k = 0; k < modes.size(); ++k)
     {
       auto [odd, even] = column.mode_odd_even_parts(modes[k].shape);
@@ -93,140 +94,125 @@ int main(int argc, char* argv[])
                             {"critical_load_over_euler", modes[k].load_factor},
                             {"odd_part", odd},
                             {"even_part", even}});
-      gelx::NodalField shape("mode", modes[k].shape);
-      shape.update();
-      writer.write_fields(double(k + 1), {shape.function()}); // "time" = mode number
+      critical.push_back(modes[k].load_factor);
+      gelx::FieldSet shape;
+      shape.add("mode", modes[k].shape);
+      results.write_fields(double(k + 1), shape.update());
     }
-    writer.write_table("eigenvalues.csv", eigen_rows);
+    results.write_table("eigenvalues.csv", eigen_rows);
+    const double P_cr = modes[0].load_factor;
+    run.summary = {{"num_dofs",
+                    column.displacement()->function_space()->dofmap()->index_map->size_global()
+                        * 3},
+                   {"slenderness", column.slenderness()},
+                   {"euler_load", column.euler_load()},
+                   {"critical_loads_over_euler", critical},
+                   {"critical_load_over_euler", P_cr},
+                   {"eigen_time", run.elapsed() - eigen_start},
+                   {"imperfection_amplitude", a.imperfection * p.tx}};
 
-    // The path points of all three analyses go to steps.csv, told apart by `path`
-    gelx::NodalField displacement("displacement", column.displacement());
-    gelx::ResultsWriter branch_writer(comm, writer.folder() / "branch", column.mesh().mesh);
-    double path_time = 0;
+    // The points of all three paths go to steps.csv, told apart by `path`; the buckled
+    // branch's shapes to branch/fields.xdmf
+    gelx::FieldSet displacement;
+    displacement.add("displacement", column.displacement());
+    gelx::ResultsWriter branch_results(run.comm(), results.folder() / "branch", column.mesh().mesh);
     int path_steps = 0, corrector_iterations = 0;
-    auto step_start = clock::now();
-    // Writes one path point; returns its (deflection / L, axial force / Euler load)
-    auto record = [&](const std::string& path, const gelx::PathPoint& pt)
+    double path_time = 0;
+    // Records one path point; returns its (deflection / L, axial force / Euler load)
+    auto record = [&](const std::string& path, const gelx::StepRecord& pt)
     {
-      path_time += seconds(step_start);
+      path_time += pt.wall_time;
       ++path_steps;
-      corrector_iterations += pt.iterations;
+      corrector_iterations += pt.newton.iterations;
       const double deflection = column.lateral_deflection();
       const double axial_force = column.axial_force(), force = axial_force / column.euler_load();
-      writer.append_step({{"path", path},
-                          {"step", pt.step},
-                          {"load_factor", pt.load_factor},
-                          {"axial_force", axial_force},
-                          {"axial_force_over_euler", force},
-                          {"deflection_over_L", deflection},
-                          {"elastica_load_over_euler",
-                           modes[0].load_factor * column.elastica_load_ratio(deflection)},
-                          {"iterations", pt.iterations},
-                          {"cutbacks", pt.cutbacks},
-                          {"stability", std::isnan(pt.stability) ? nlohmann::json(nullptr)
-                                                                 : nlohmann::json(pt.stability)}});
-      step_start = clock::now();
+      results.append_step({{"path", path},
+                           {"step", pt.step},
+                           {"load_factor", pt.load},
+                           {"axial_force", axial_force},
+                           {"axial_force_over_euler", force},
+                           {"deflection_over_L", deflection},
+                           {"elastica_load_over_euler",
+                            P_cr * column.elastica_load_ratio(deflection)},
+                           {"iterations", pt.newton.iterations},
+                           {"cutbacks", pt.cutbacks},
+                           {"stability", std::isnan(pt.stability) ? nlohmann::json(nullptr)
+                                                                  : nlohmann::json(pt.stability)}});
+      run.summary.update({{"arclength_steps", path_steps},
+                          {"corrector_iterations_per_step",
+                           double(corrector_iterations) / path_steps},
+                          {"time_per_arclength_step", path_time / path_steps}});
       return std::pair{deflection, force};
     };
-    auto set_load = [&](double lambda) { column.set_load_factor(lambda); };
-    // A continuation with its own options prefix and the scene's defaults for it
+    // A path of the column with its own options prefix and the scene's defaults for it
     auto continuation = [&](const std::string& prefix,
                             const std::map<std::string, std::string>& defaults)
     {
       for (const auto& [name, value] : defaults)
         gelx::set_default_option(prefix, name, value);
-      gelx::set_default_option(prefix, "monitor", "0");
-      return std::make_unique<gelx::ArcLength>(comm, column.problem(), set_load, prefix);
+      return std::make_unique<gelx::ArcLength>(run.comm(), column.problem(),
+                                               [&](double l) { column.set_load_factor(l); },
+                                               prefix);
     };
-    // After the bifurcation: a cylindrical constraint on the displacement (its 2-norm reaches
+    // After the bifurcation, steps in the displacement alone (psi = 0; its 2-norm reaches
     // ~1e2 on the default mesh)
     const std::map<std::string, std::string> buckled = {{"ds", "1"}, {"ds_max", "40"}};
 
-    // What the paths reached, for the summary; a path that fails keeps them as they were and its
-    // completed points in steps.csv
-    double lambda_stable = 0, lambda_unstable = NAN, stability_at_switch = NAN;
-    double branch_deflection = 0, branch_load = NAN, imperfect_deflection = 0, imperfect_load = NAN;
-    const double amplitude = prm.real("imperfection") * p.tx;
-    std::vector<double> critical;
-    for (const auto& m : modes)
-      critical.push_back(m.load_factor);
-    const double P_cr = modes[0].load_factor;
-    auto summary = [&](const std::string& status)
-    {
-      writer.write_summary(
-          "buckling", status, prm,
-          {{"num_dofs",
-            column.displacement()->function_space()->dofmap()->index_map->size_global() * 3},
-           {"slenderness", column.slenderness()},
-           {"euler_load", column.euler_load()},
-           {"critical_loads_over_euler", critical},
-           {"critical_load_over_euler", P_cr},
-           {"bifurcation_bracket", {lambda_stable, lambda_unstable}},
-           {"stability_at_switch", stability_at_switch},
-           {"branch_deflection_over_L", branch_deflection},
-           {"branch_load_over_critical", branch_load / P_cr},
-           {"elastica_at_branch_end", column.elastica_load_ratio(branch_deflection)},
-           {"imperfection_amplitude", amplitude},
-           {"imperfect_deflection_over_L", imperfect_deflection},
-           {"imperfect_load_over_critical", imperfect_load / P_cr},
-           {"elastica_at_imperfect_end", column.elastica_load_ratio(imperfect_deflection)},
-           {"eigen_time", eigen_time},
-           {"arclength_steps", path_steps},
-           {"corrector_iterations_per_step", double(corrector_iterations) / path_steps},
-           {"time_per_arclength_step", path_time / path_steps}});
-    };
+    // 3. The perfect column along its straight path. Steps of at most 0.1 Euler loads, with the
+    //    load weighed into the step (psi = 1) since the straight column barely moves; the
+    //    tangent's eigenvalue nearest zero is computed at every point.
+    auto straight = continuation("straight_arclength_", {{"psi", "1"}, {"ds", "0.1"},
+                                                         {"ds_max", "0.1"}, {"stability", "1"}});
+    double lambda_stable = 0, lambda_unstable = NAN;
+    gelx::PathState straight_path;
+    straight->run(straight_path, a.max_steps,
+                  {[&](const gelx::StepRecord& pt, gelx::PathState&)
+                   {
+                     record("straight", pt);
+                     (pt.bifurcation ? lambda_unstable : lambda_stable) = pt.load;
+                     run.summary["bifurcation_bracket"] = {lambda_stable, lambda_unstable};
+                   }},
+                  [](const gelx::StepRecord& pt) { return pt.bifurcation || pt.limit_point; });
+    if (std::isnan(lambda_unstable))
+      throw gelx::ConvergenceError("no bifurcation found on the straight path up to "
+                                   + std::to_string(lambda_stable) + " Euler loads");
 
-    try
-    {
-      // 3. The perfect column along its straight path. Steps of at most 0.1 Euler loads, with
-      //    the load weighed into the constraint (psi = 1) since the straight column barely
-      //    moves; the tangent's eigenvalue nearest zero is computed at every point.
-      auto straight = continuation("straight_arclength_", {{"psi", "1"}, {"ds", "0.1"},
-                                                           {"ds_max", "0.1"}, {"stability", "1"}});
-      step_start = clock::now();
-      straight->run(0.0, max_steps,
-                    [&](const gelx::PathPoint& pt)
-                    {
-                      record("straight", pt);
-                      (pt.bifurcation ? lambda_unstable : lambda_stable) = pt.load_factor;
-                    },
-                    [](const gelx::PathPoint& pt) { return pt.bifurcation || pt.limit_point; });
-      if (std::isnan(lambda_unstable))
-        throw gelx::ConvergenceError("no bifurcation found on the straight path up to "
-                                     + std::to_string(lambda_stable) + " Euler loads");
+    // 4. Branch switching: leave along the critical mode and follow the buckled branch
+    auto branch = continuation("branch_arclength_", buckled);
+    gelx::PathState branch_path;
+    branch_path.load = lambda_unstable;
+    run.summary["stability_at_switch"] = branch->switch_branch(branch_path);
+    double branch_deflection = 0;
+    branch->run(branch_path, a.max_steps,
+                {[&](const gelx::StepRecord& pt, gelx::PathState&)
+                 {
+                   const auto [deflection, load] = record("branch", pt);
+                   branch_deflection = deflection;
+                   branch_results.write_fields(pt.step, displacement.update());
+                   run.summary.update(
+                       {{"branch_deflection_over_L", deflection},
+                        {"branch_load_over_critical", load / P_cr},
+                        {"elastica_at_branch_end", column.elastica_load_ratio(deflection)}});
+                 }},
+                [&](const gelx::StepRecord&) { return branch_deflection >= a.max_deflection; });
 
-      // 4. Branch switching: leave along the critical mode and follow the buckled branch
-      auto branch = continuation("branch_arclength_", buckled);
-      stability_at_switch = branch->switch_branch();
-      step_start = clock::now();
-      branch->run(lambda_unstable, max_steps,
-                  [&](const gelx::PathPoint& pt)
-                  {
-                    std::tie(branch_deflection, branch_load) = record("branch", pt);
-                    displacement.update();
-                    branch_writer.write_fields(pt.step, {displacement.function()});
-                  },
-                  [&](const gelx::PathPoint&) { return branch_deflection >= max_deflection; });
-
-      // 5. The imperfect column: mode 1 seeded into the geometry, from the unloaded state
-      gelx::seed_imperfection(*column.mesh().mesh, {modes.at(0)}, {amplitude});
-      column.displacement()->x()->set(0.0);
-      column.set_load_factor(0.0);
-      auto imperfect = continuation("imperfect_arclength_", buckled);
-      step_start = clock::now();
-      imperfect->run(
-          0.0, max_steps,
-          [&](const gelx::PathPoint& pt)
-          { std::tie(imperfect_deflection, imperfect_load) = record("imperfect", pt); },
-          [&](const gelx::PathPoint&) { return imperfect_deflection >= max_deflection; });
-    }
-    catch (const gelx::ConvergenceError& e)
-    {
-      summary(std::string("failed: ") + e.what());
-      throw;
-    }
-
-    // 6. Summary: critical loads against Euler, the paths' ends against the elastica
-    summary("completed");
+    // 5. The imperfect column: mode 1 seeded into the geometry, from the unloaded state
+    gelx::seed_imperfection(*column.mesh().mesh, {modes.at(0)}, {a.imperfection * p.tx});
+    column.displacement()->x()->set(0.0);
+    column.set_load_factor(0.0);
+    auto imperfect = continuation("imperfect_arclength_", buckled);
+    double imperfect_deflection = 0;
+    gelx::PathState imperfect_path;
+    imperfect->run(
+        imperfect_path, a.max_steps,
+        {[&](const gelx::StepRecord& pt, gelx::PathState&)
+         {
+           const auto [deflection, load] = record("imperfect", pt);
+           imperfect_deflection = deflection;
+           run.summary.update({{"imperfect_deflection_over_L", deflection},
+                               {"imperfect_load_over_critical", load / P_cr},
+                               {"elastica_at_imperfect_end", column.elastica_load_ratio(deflection)}});
+         }},
+        [&](const gelx::StepRecord&) { return imperfect_deflection >= a.max_deflection; });
   });
 }

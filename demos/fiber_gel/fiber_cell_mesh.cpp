@@ -67,7 +67,7 @@ void FiberCellGeometry::check() const
     throw InputError("the cell width D must exceed the fiber diameter d");
   if (l < d || l > L)
     throw InputError("the fiber length l must lie in [d, L]");
-  if (full && rod())
+  if (full() && rod())
     throw InputError("the full periodic cell needs a fiber shorter than the cell (l < L)");
 }
 
@@ -123,7 +123,7 @@ TaggedMesh fiber_cell_mesh(MPI_Comm comm, const FiberCellGeometry& g)
           return g.h_fiber + s * (g.h_far - g.h_fiber);
         });
   };
-  if (!g.full)
+  if (!g.full())
     return mesh_gmsh_model(comm, build);
   // The mirror images match node for node on opposite faces, as periodic constraints need,
   // and the whole cell's symmetric solution is the 1/8 cell's to round-off

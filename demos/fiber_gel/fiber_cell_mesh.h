@@ -18,10 +18,11 @@ struct FiberCellGeometry
   double l = 30;  ///< fiber length, caps included (d <= l <= L)
   double L = 30;  ///< cell length along the fiber
   double D = 50;  ///< cell width across the fiber (D > d)
-  /// false: 1/8 of the cell, [0, D/2]^2 x [0, L/2], bounded by the three mirror planes through
-  /// the fiber's centre; true: the whole cell [-D/2, D/2]^2 x [-L/2, L/2], meshed as the 1/8
-  /// cell and its mirror images (so opposite faces match node for node)
-  bool full = false;
+  /// "eighth": 1/8 of the cell, [0, D/2]^2 x [0, L/2], bounded by the three mirror planes
+  /// through the fiber's centre; "full": the whole cell [-D/2, D/2]^2 x [-L/2, L/2], meshed as
+  /// the 1/8 cell and its mirror images (so opposite faces match node for node)
+  std::string cell = "eighth";
+  bool full() const { return cell == "full"; }
   double h_fiber = 2;   ///< mesh size on the fiber surface
   double h_far = 10;    ///< mesh size from `grading` away from the fiber on
   double grading = 10;  ///< distance over which the size grows from h_fiber to h_far

@@ -87,7 +87,7 @@ FiberGelCell::FiberGelCell(MPI_Comm comm, const FiberCellGeometry& geometry,
   // The fiber is rigid and bonded to the gel
   _bcs = std::make_unique<DirichletConditions>(V, _mesh.facet_tags);
   _bcs->clamp(_mesh.tag("fiber"));
-  if (!_g.full)
+  if (!_g.full())
   {
     _bcs->fix(_mesh.tag("x_min"), 0);
     _bcs->fix(_mesh.tag("y_min"), 1);
@@ -103,7 +103,7 @@ FiberGelCell::FiberGelCell(MPI_Comm comm, const FiberCellGeometry& geometry,
   _mpc = std::make_unique<MultipointConstraint>(*_problem, V);
   for (auto& row : _macro)
     row.fill(MultipointConstraint::no_macro);
-  if (_g.full)
+  if (_g.full())
     constrain_periodic();
   else
     constrain_eighth();
@@ -144,7 +144,7 @@ void FiberGelCell::set_temperature(double T) { _constants.at("T")->value = {T}; 
 CellContraction FiberGelCell::contraction() const
 {
   // Edge of the modelled cell along each axis: the macro unknown displaces its far face
-  const double scale = _g.full ? 1.0 : 0.5;
+  const double scale = _g.full() ? 1.0 : 0.5;
   const std::array<double, 3> edge = {scale * _g.D, scale * _g.D, scale * _g.L};
   std::array<double, 3> alpha = {1, 1, 1};
   double shear = 0;

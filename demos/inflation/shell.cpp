@@ -17,27 +17,31 @@ InflatedShell::InflatedShell(MPI_Comm comm, const std::string& geo_file, ShellPa
       fem::create_functionspace(functionspace_form_sphere_residual, "u", _geo.mesh));
   _u = std::make_shared<fem::Function<double>>(V);
   _u->name = "displacement";
-  _pressure = std::make_shared<fem::Constant<double>>(0.0);
-  const std::map<std::string, std::shared_ptr<const fem::Constant<double>>> constants
-      = {{"G", std::make_shared<fem::Constant<double>>(p.G)},
-         {"K", std::make_shared<fem::Constant<double>>(p.K)},
-         {"p", _pressure}};
   // ds(1) of the form is the inner surface, physical group "inner" = 1 of the .geo
-  auto form = [&](ufcx_form* f, std::vector<std::shared_ptr<const fem::FunctionSpace>> s)
-  {
-    return std::make_shared<fem::Form<double>>(fem::create_form<double>(
-        *f, s, {{"u", _u}}, constants,
-        {{fem::IntegralType::exterior_facet, _geo.facet_tags.get()}}, _geo.mesh));
-  };
+  _forms = std::make_unique<FormBinding>(_geo.mesh, FormBinding::Coefficients{{"u", _u}},
+                                         std::map<std::string, double>{{"G", p.G}, {"K", p.K},
+                                                                       {"p", 0.0}});
+  _forms->add_subdomains(fem::IntegralType::exterior_facet, _geo.facet_tags);
   _bcs = std::make_unique<DirichletConditions>(V, _geo.facet_tags);
-  _bcs->fix(_geo.tag("sym_x"), 0);
-  _bcs->fix(_geo.tag("sym_y"), 1);
-  _bcs->fix(_geo.tag("sym_z"), 2);
+  const std::array<int, 3> planes = {_geo.tag("sym_x"), _geo.tag("sym_y"), _geo.tag("sym_z")};
+  if (p.symmetry == "rollers")
+    for (int k = 0; k < 3; ++k)
+      _bcs->fix(planes[k], k);
   _bcs->update(0);
   _problem = std::make_unique<NonlinearProblem>(
-      _u, form(form_sphere_residual, {V}), form(form_sphere_tangent, {V, V}), _bcs->bcs(),
-      std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
-          *expression_sphere_det_F, {{"u", _u}}, constants, _geo.mesh)));
+      _u, _forms->form(form_sphere_residual, {V}), _forms->form(form_sphere_tangent, {V, V}),
+      _bcs->bcs(), _forms->expression(expression_sphere_det_F));
+  if (p.symmetry == "constraints")
+  {
+    _symmetry = std::make_unique<MultipointConstraint>(*_problem, V);
+    for (int k = 0; k < 3; ++k)
+    {
+      std::array<double, 3> normal{};
+      normal[k] = 1;
+      _symmetry->slip(*_geo.facet_tags, planes[k], normal);
+    }
+    _symmetry->finalize();
+  }
 
   _X = V->tabulate_dof_coordinates(false);
   const std::int32_t owned = V->dofmap()->index_map->size_local();
@@ -47,7 +51,12 @@ InflatedShell::InflatedShell(MPI_Comm comm, const std::string& geo_file, ShellPa
       _inner_nodes.push_back(n);
 }
 
-void InflatedShell::set_load_factor(double lambda) { _pressure->value = {lambda * _p.G}; }
+NonlinearSystem& InflatedShell::system()
+{
+  return _symmetry ? static_cast<NonlinearSystem&>(*_symmetry) : *_problem;
+}
+
+void InflatedShell::set_load_factor(double lambda) { _forms->set("p", lambda * _p.G); }
 
 double InflatedShell::inner_stretch() const
 {

@@ -7,6 +7,8 @@
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/Function.h>
 #include <gelx/boundary.h>
+#include <gelx/constraints.h>
+#include <gelx/forms.h>
 #include <gelx/mesh.h>
 #include <gelx/problem.h>
 #include <memory>
@@ -23,6 +25,10 @@ struct ShellParameters
   double h = 0.125;  ///< mesh size
   double G = 1.0;    ///< shear modulus
   double K = 1000.0; ///< bulk modulus (K/G large: nearly incompressible)
+  /// How the three symmetry planes hold the octant: "rollers" (Dirichlet conditions on the
+  /// normal component) or "constraints" (gelx::MultipointConstraint::slip, the same condition
+  /// through the reduced space: to show that continuation composes with constraints)
+  std::string symmetry = "rollers";
 };
 
 class InflatedShell
@@ -31,6 +37,8 @@ public:
   InflatedShell(MPI_Comm comm, const std::string& geo_file, ShellParameters p);
 
   NonlinearProblem& problem() { return *_problem; }
+  /// The system to solve: the problem, or its reduced space with the symmetry constraints.
+  NonlinearSystem& system();
   const TaggedMesh& mesh() const { return _geo; }
   std::shared_ptr<dolfinx::fem::Function<double>> displacement() const { return _u; }
 
@@ -52,9 +60,10 @@ private:
   ShellParameters _p;
   TaggedMesh _geo;
   std::shared_ptr<dolfinx::fem::Function<double>> _u;
-  std::shared_ptr<dolfinx::fem::Constant<double>> _pressure;
+  std::unique_ptr<FormBinding> _forms;
   std::unique_ptr<DirichletConditions> _bcs;
   std::unique_ptr<NonlinearProblem> _problem;
+  std::unique_ptr<MultipointConstraint> _symmetry;
   std::vector<std::int32_t> _inner_nodes; // owned nodes on the inner surface
   std::vector<double> _X;                 // reference coordinates of the nodes
 };

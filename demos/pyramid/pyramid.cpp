@@ -66,7 +66,7 @@ LawForms law_forms(const std::string& law, int order)
 PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry,
                                const PyramidMaterial& material)
     : _g(geometry), _H(geometry.L / std::sqrt(2.0)),
-      _images(geometry.half_cell ? std::vector<std::array<double, 2>>{{1, 1}, {-1, 1}}
+      _images(geometry.domain == "half" ? std::vector<std::array<double, 2>>{{1, 1}, {-1, 1}}
                                  : std::vector<std::array<double, 2>>{
                                      {1, 1}, {1, -1}, {-1, 1}, {-1, -1}}),
       _mesh(pyramid_mesh(comm, geometry))

@@ -276,7 +276,7 @@ TaggedMesh pyramid_mesh(MPI_Comm comm, const PyramidGeometry& g)
       gmsh::model::setPhysicalName(2, group++, name);
     }
   };
-  const std::vector<int> mirror_axes = g.half_cell ? std::vector<int>{1} : std::vector<int>{};
+  const std::vector<int> mirror_axes = g.domain == "half" ? std::vector<int>{1} : std::vector<int>{};
   return mesh_gmsh_model(comm, build, {}, mirror_axes);
 }
 

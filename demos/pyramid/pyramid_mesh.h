@@ -4,6 +4,7 @@
 
 #include <gelx/mesh.h>
 #include <mpi.h>
+#include <string>
 
 namespace gelx::scenes
 {
@@ -16,13 +17,13 @@ struct PyramidGeometry
   int cells = 4;   ///< hexahedra along each edge of a pyramid block
   int tip_levels = 3; ///< apex refinement: the tip is cut at H/2, H/4, ... this many times
   double growth = 1.5; ///< size ratio of neighbouring cells in the base, away from the pyramid
-  /// Model the half x >= 0 of the unit cell (the quarter and its mirror image in y = 0)
-  /// instead of the quarter: to show that the quarter's symmetry conditions do not change the
-  /// answer.
-  bool half_cell = false;
+  /// "quarter": the quarter x, y >= 0 of the unit cell; "half": the half x >= 0 (the quarter
+  /// and its mirror image in y = 0), to show that the quarter's symmetry conditions do not
+  /// change the answer
+  std::string domain = "quarter";
 };
 
-/// The quarter x, y >= 0 (or the half x >= 0, PyramidGeometry::half_cell) of the unit cell
+/// The quarter x, y >= 0 (or the half x >= 0, PyramidGeometry::domain) of the unit cell
 /// [-W/2, W/2]^2: the base [0, W/2]^2 x [0, t] and on
 /// it the pyramid over [0, L/2]^2 with its apex at (0, 0, t + H), all hexahedra.
 ///

@@ -23,6 +23,7 @@
 #include "theory/flory_rehner.h"
 
 #include <gelx/load_stepping.h>
+#include <gelx/problem.h>
 #include <petscsys.h>
 
 using namespace dolfinx;
@@ -38,7 +39,7 @@ void ramp_temperature(GelBox& gel, gelx::NonlinearProblem& problem, gelx::Newton
   const double T_prev = gel.constants.at("T")->value[0];
   gelx::LoadStepper stepper(problem, newton, {},
                             [&](double t) { gel.set_temperature(T_prev + t * (T_next - T_prev)); });
-  stepper.run([](const gelx::StepRecord&) {});
+  stepper.run();
 }
 
 /// Cauchy stress components (xx, yy, zz, ...) as ranges over the cells.
@@ -114,7 +115,7 @@ int main(int argc, char* argv[])
       gelx::NewtonSolver newton(comm);
       // Apply the constraint at the initial temperature, then change chi at fixed lambda_par
       gelx::LoadStepper constrain(problem, newton, {}, [&](double t) { gel.bcs->update(t); });
-      constrain.run([](const gelx::StepRecord&) {});
+      constrain.run();
       const double chi_c = theory::chi_free(phi_c, p.n);
       // Counts of the states on each side of phi_c and of those with the sign of Eq. 4.11
       int below = 0, above = 0, negative_below = 0, positive_above = 0;

@@ -22,6 +22,7 @@
 
 #include <gelx/boundary.h>
 #include <gelx/load_stepping.h>
+#include <gelx/problem.h>
 #include <gelx/prestretch.h>
 #include <petscsys.h>
 
@@ -109,7 +110,7 @@ int main(int argc, char* argv[])
       };
       gelx::LoadStepper stepper(problem, newton, {}, apply);
       int steps = 0, iterations = 0;
-      stepper.run([&](const gelx::StepRecord& r) { ++steps, iterations += r.newton.iterations; });
+      stepper.run([&](const gelx::StepRecord& r, gelx::PathState&) { ++steps, iterations += r.newton.iterations; });
       if (root)
         std::printf("      prestretch applied in %d steps, %d Newton iterations\n", steps,
                     iterations);

@@ -30,6 +30,7 @@
 #include <dolfinx/mesh/cell_types.h>
 #include <gelx/boundary.h>
 #include <gelx/load_stepping.h>
+#include <gelx/problem.h>
 #include <gelx/mixed.h>
 #include <petscsys.h>
 
@@ -68,7 +69,7 @@ Measured stretch(const TaggedBox& box, std::shared_ptr<fem::Function<double>> w,
   gelx::NonlinearProblem problem(w, forms.residual, forms.tangent, bcs.bcs(), det_F);
   gelx::NewtonSolver newton(comm);
   gelx::LoadStepper stepper(problem, newton, {}, [&](double t) { bcs.update(t); });
-  stepper.run([](const gelx::StepRecord&) {});
+  stepper.run();
 
   gelx::CellField sigma("sigma", stress);
   sigma.update();

@@ -1,0 +1,78 @@
+#pragma once
+/// @file system.h
+/// The interface every solver in gelx drives, and that constraints, contact and continuation
+/// decorate.
+
+#include <memory>
+#include <petscmat.h>
+#include <petscsnes.h>
+#include <petscvec.h>
+#include <vector>
+
+namespace gelx
+{
+class NonlinearProblem;
+
+/// A discrete nonlinear system R(x) = 0 with its tangent dR/dx, in the form PETSc's SNES needs.
+///
+/// The base system is a NonlinearProblem (forms, Dirichlet conditions). Decorators wrap another
+/// system and change its unknowns or equations, and compose in this order, innermost first:
+///   NonlinearProblem  <  MultipointConstraint (reduced unknowns, macro unknowns)
+///                     <  RigidPlaneContact   (active rows)
+///                     <  ArcLengthSystem     (one more unknown: the load factor)
+/// so that, e.g., contact acts on a constrained cell and continuation on either.
+///
+/// A system holds a current state. Solvers never evaluate at a vector of their own directly:
+/// they set_state(x) first, then ask for residual(), tangent(), admissible(); decorators pass
+/// the state inward (MultipointConstraint sets u = P x + g in its problem).
+class NonlinearSystem
+{
+public:
+  virtual ~NonlinearSystem() = default;
+
+  /// The current state, in the layout of create_vector(). Decorators and drivers read it;
+  /// change it through set_state().
+  virtual Vec unknowns() = 0;
+  /// Make the owned entries of x (a vector of create_vector()'s layout) the current state.
+  void set_state(Vec x)
+  {
+    if (x != unknowns())
+      VecCopy(x, unknowns());
+    unknowns_changed();
+  }
+  /// To be called after the owned entries of unknowns() changed: update what depends on them
+  /// (ghost values, the constrained dofs of a reduced space, ...).
+  virtual void unknowns_changed() = 0;
+
+  /// Residual at the current state. Rows with a prescribed value (Dirichlet, contact) hold
+  /// x_i - g_i.
+  virtual void residual(Vec r) = 0;
+  /// Tangent dR/dx at the current state (identity in the rows of prescribed values).
+  virtual void tangent(Mat A) = 0;
+  virtual Vec create_vector() const = 0;
+  /// A matrix for tangent(), with its near-nullspace where one is known.
+  virtual Mat create_matrix() const = 0;
+  /// False when the current state is physically inadmissible (det F <= 0 somewhere).
+  virtual bool admissible() const { return true; }
+  /// Local indices of the owned rows that prescribe a value (Dirichlet conditions, prescribed
+  /// macro unknowns, nodes in contact): their tangent row is the identity.
+  virtual std::vector<PetscInt> prescribed_rows() const = 0;
+
+  /// The current state is an accepted iterate or solution: history-dependent equations (the
+  /// contact active set) move on to it. Solvers call it once per Newton iteration, at the
+  /// state of their last residual evaluation, and after convergence; never at trial states,
+  /// so that a rejected trial leaves no trace.
+  virtual void commit() {}
+
+  /// Set up what a solver of this system needs beyond residual and tangent (a shell
+  /// preconditioner for a bordered tangent); NewtonSolver calls it before reading its options.
+  virtual void configure(SNES) const {}
+
+  /// The base problem: its mesh, displacement and forms (for outputs and for decorators).
+  virtual NonlinearProblem& problem() = 0;
+  /// For each owned entry of the base problem's vector, its local index in unknowns(), or -1
+  /// where it is no unknown of its own (a constrained slave). The identity for the problem.
+  virtual const std::vector<PetscInt>& unknown_of_problem_dof() const = 0;
+};
+
+} // namespace gelx

@@ -89,8 +89,8 @@ int main(int argc, char* argv[])
                         [&](double t) { shell.set_load_factor(0.1 * t * p_ref / p.G); })
           .run([&](const gelx::StepRecord& s, gelx::PathState&)
                { run.summary["time_per_newton_iteration"] = s.wall_time / s.newton.iterations; });
-      shell.displacement()->x()->set(0.0);
-      shell.system().set_state(shell.system().unknowns());
+      VecSet(shell.system().unknowns(), 0.0); // back to the unloaded state
+      shell.system().unknowns_changed();
       shell.set_load_factor(0.0);
     }
 

@@ -26,7 +26,9 @@ import pathlib
 import sys
 
 from checks import Checks
-from closed_forms import GelHeating
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from closed_forms import GelHeating  # noqa: E402  (demos/closed_forms.py)
 
 # gelx-fiber_gel --l 10 --L 200 --D 200 --h_fiber 2 --h_far 25 --grading 30 (3885 dofs), with
 # the scene's defaults P2, n = 0.01, phi_i = 0.3, alpha0 = 0.8

@@ -31,9 +31,9 @@ import sys
 import numpy as np
 
 from checks import Checks
-from closed_forms import GelHeating
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from closed_forms import GelHeating  # noqa: E402  (demos/closed_forms.py)
 from fields import FieldSeries  # noqa: E402  (demos/fields.py)
 
 

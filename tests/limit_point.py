@@ -15,7 +15,9 @@ import pathlib
 import sys
 
 from checks import Checks
-from closed_forms import shell_pressure_maximum, shell_pressure_over_G
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from closed_forms import shell_pressure_maximum, shell_pressure_over_G  # noqa: E402  (demos/closed_forms.py)
 
 out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())

@@ -36,7 +36,9 @@ import sys
 import numpy as np
 
 from checks import Checks
-from closed_forms import EFFECTIVE_LENGTH_FACTOR, elastica_load_ratio, euler_load
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from closed_forms import EFFECTIVE_LENGTH_FACTOR, elastica_load_ratio, euler_load  # noqa: E402  (demos/closed_forms.py)
 
 # The bounds, 1% on the branch and 2% on the imperfect column, for both end conditions.
 # Beyond beam theory the 3-D column differs from the inextensible elastica by its axial

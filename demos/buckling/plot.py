@@ -12,26 +12,19 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from closed_forms import cantilever_elastica  # noqa: E402  (demos/closed_forms.py)
+
 out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())
 rows = list(csv.DictReader(open(out / "steps.csv")))
 P_cr = s["critical_load_over_euler"]
 
 
-def complete_elliptic_k(k):
-    """K(k) = pi / (2 AGM(1, sqrt(1 - k^2)))."""
-    a, b = np.ones_like(k), np.sqrt(1 - k**2)
-    for _ in range(30):
-        a, b = (a + b) / 2, np.sqrt(a * b)
-    return np.pi / (2 * a)
-
-
 # The cantilever elastica, parametrised by k = sin(tip angle / 2); with clamped ends each
 # quarter of the column is such a cantilever and the mid-span deflection is twice its tip's
-k = np.linspace(1e-6, 0.8, 400)
-d_cantilever = 2 * k / complete_elliptic_k(k)
+d_cantilever, load = np.array([cantilever_elastica(k) for k in np.linspace(1e-6, 0.8, 400)]).T
 d = d_cantilever / 2 if s["parameters"]["ends"] == "clamped-clamped" else d_cantilever
-load = (2 * complete_elliptic_k(k) / np.pi)**2
 
 shown = d <= 1.1 * max(float(r["deflection_over_L"]) for r in rows)
 

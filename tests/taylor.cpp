@@ -22,7 +22,10 @@
 //  5. gelx::RigidPlaneContact at a converged contact state (the Hertz cap of meshes/hertz.geo,
 //     mixed P2-P1, pressed to d = 0.1 R), requiring that no perturbation changed the active set;
 //  6. the reduced system P^T R(P u_r + g) of gelx::MultipointConstraint on a periodic cell with
-//     nine macro unknowns (six free, three prescribed), perturbing the free macro unknowns too.
+//     nine macro unknowns (six free, three prescribed), perturbing the free macro unknowns too;
+//  7. the arc-length bordered system gelx::ArcLengthSystem (the load factor as one more unknown,
+//     the arc-length condition as one more equation) on the inflated shell of case 4, whose
+//     tangent is a shell matrix: perturbing the displacement and the pressure together.
 // Negative controls prove the test can fail: the same helper with the tangent scaled by 1.001,
 // and with the follower pressure's term dropped from the tangent, must give ratios near 2.
 
@@ -37,6 +40,7 @@
 
 #include <cmath>
 #include <dolfinx/fem/DofMap.h>
+#include <gelx/arclength.h>
 #include <gelx/boundary.h>
 #include <gelx/constraints.h>
 #include <gelx/contact.h>
@@ -561,6 +565,44 @@ void periodic_cell(Checks& checks, MPI_Comm comm)
 }
 } // namespace
 
+// --- 7. The arc-length bordering --------------------------------------------------------
+
+void arclength_bordering(Checks& checks, MPI_Comm comm)
+{
+  gelx::scenes::ShellParameters p;
+  p.h = 0.25;
+  p.K = 10 * p.G;
+  gelx::scenes::InflatedShell shell(comm, GELX_MESHES "/sphere_shell.geo", p);
+  gelx::NonlinearProblem& problem = shell.problem();
+  // The last point: the shell inflated uniformly by 20% at p = 0.5 G; the state: a non-uniform
+  // inflation at p = G (the arc-length condition's |x - x0|^2 is then far from zero)
+  set_nodal(*shell.displacement(), -1, [](const Point& X) {
+    return std::array<double, 3>{0.2 * X[0], 0.2 * X[1], 0.2 * X[2]}; });
+  problem.unknowns_changed();
+  Vec x0 = problem.create_vector();
+  GELX_PETSC(VecCopy(problem.unknowns(), x0));
+  auto inflated = [](const Point& X)
+  {
+    const double r = std::sqrt(X[0] * X[0] + X[1] * X[1] + X[2] * X[2]);
+    const double s = 0.3 - 0.4 * (r - 1) + 0.05 * (X[0] * X[1] - X[2] * X[2]);
+    return std::array<double, 3>{s * X[0], s * X[1], s * X[2]};
+  };
+  set_nodal(*shell.displacement(), -1, inflated);
+  problem.unknowns_changed();
+  gelx::ArcLengthSystem bordered(problem, [&](double l) { shell.set_load_factor(l); },
+                                 "taylor_arclength_");
+  bordered.set_constraint(x0, 0.5, 1.0, 1.0); // ds = 1, psi = 1: both parts of the condition
+  Vec state = bordered.create_vector();
+  bordered.pack(problem.unknowns(), 1.0, state);
+  bordered.set_state(state);
+  VecDestroy(&state);
+  VecDestroy(&x0);
+  const std::string name = "arc-length bordered system on the sphere shell (P2, K = 10 G), "
+                           "lambda = 1 and the displacement perturbed together";
+  print(comm, name + ": " + gradient_range(*shell.displacement()->function_space(), inflated));
+  check_second_order(checks, comm, name, taylor(bordered));
+}
+
 int main(int argc, char* argv[])
 {
   return run_checks(argc, argv,
@@ -572,10 +614,6 @@ int main(int argc, char* argv[])
                       follower_pressure(checks, comm);
                       contact(checks, comm);
                       periodic_cell(checks, comm);
-                      // Further systems join here, e.g. the arc-length bordered system
-                      // R(u, lambda) with tangent [K, dR/dlambda; c^T, d] once it is a
-                      // NonlinearSystem: build it at a deformed state (lambda != 0) and call
-                      //   check_second_order(checks, comm, name, taylor(bordered));
-                      // taylor() perturbs every unknown without an identity row, lambda too.
+                      arclength_bordering(checks, comm);
                     });
 }

@@ -148,27 +148,13 @@ TaylorResult taylor_remainders(NonlinearSystem& system, Vec direction, const Tay
 std::vector<PetscInt> identity_rows(NonlinearSystem& system)
 {
   Vec r = system.create_vector();
-  system.residual(r); // the state the tangent reads (e.g. the active set)
+  system.residual(r); // the state the rows depend on (e.g. the active set)
+  PetscInt first;
+  GELX_PETSC(VecGetOwnershipRange(r, &first, nullptr));
   VecDestroy(&r);
-  Mat K = system.create_matrix();
-  system.tangent(K);
-  PetscInt first, last;
-  GELX_PETSC(MatGetOwnershipRange(K, &first, &last));
-  std::vector<PetscInt> rows;
-  for (PetscInt row = first; row < last; ++row)
-  {
-    PetscInt n;
-    const PetscInt* cols;
-    const PetscScalar* values;
-    GELX_PETSC(MatGetRow(K, row, &n, &cols, &values));
-    bool identity = true;
-    for (PetscInt j = 0; j < n; ++j)
-      identity = identity && values[j] == (cols[j] == row ? 1.0 : 0.0);
-    GELX_PETSC(MatRestoreRow(K, row, &n, &cols, &values));
-    if (identity)
-      rows.push_back(row);
-  }
-  MatDestroy(&K);
+  std::vector<PetscInt> rows = system.prescribed_rows();
+  for (PetscInt& row : rows)
+    row += first;
   return rows;
 }
 

@@ -83,9 +83,9 @@ struct TaylorResult
 TaylorResult taylor_remainders(NonlinearSystem& system, Vec direction,
                                const TaylorOptions& options = {});
 
-/// Global indices of the owned rows in which the tangent at the current unknowns is an identity
-/// row: the constrained rows (Dirichlet dofs, prescribed macro unknowns, nodes in contact),
-/// whose equation is u_i = const. Collective.
+/// Global indices of the owned rows that prescribe a value at the current unknowns
+/// (NonlinearSystem::prescribed_rows: Dirichlet dofs, prescribed macro unknowns, nodes in
+/// contact), whose equation is u_i = const and whose tangent row is the identity. Collective.
 std::vector<PetscInt> identity_rows(NonlinearSystem& system);
 
 /// A direction in the system's layout with entries in [-1, 1] that depend on the global row

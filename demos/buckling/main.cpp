@@ -3,7 +3,7 @@
 // Sample runs:
 //   ./gelx run buckling
 //   ./gelx run buckling --ends clamped-clamped --nz 80
-//   ./gelx run buckling --np 2 -branch_arclength_monitor 1
+//   ./gelx run buckling --np 2 -branch_arclength_snes_monitor
 //
 // A column of compressible neo-Hookean solid (Eq. 3.1) is compressed along its axis, as the
 // thesis' ABAQUS *BUCKLE / *IMPERFECTION / Riks analyses were. Four analyses:

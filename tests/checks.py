@@ -23,6 +23,14 @@ class Checks:
         self.require(f"{what}: {value:.15g} (reference {reference:.15g}, relative error "
                      f"{err:.2e}, tol {tol:.1e})", err <= tol)
 
+    def newton_tolerance(self, rows, what="every step"):
+        """What tolerances resting on "Newton converges to |R| <= 1e-10 |R0|" rely on: every
+        row of steps.csv (its newton_residual, newton_residual0) met max(1e-12, 1e-10 |R0|)."""
+        worst = max(float(r["newton_residual"]) / max(1e-12, 1e-10 * float(r["newton_residual0"]))
+                    for r in rows) if rows else float("inf")
+        self.require(f"{what}: Newton met |R| <= max(1e-12, 1e-10 |R0|) ({len(rows)} steps, "
+                     f"worst {worst:.3g} of it)", worst <= 1)
+
     def finish(self):
         print(f"{self.passed} passed, {self.failed} failed")
         sys.exit(1 if self.failed else 0)

@@ -21,6 +21,7 @@ computed here from the run's parameters (closed_forms.GelHeating): the chi(T) li
 
 usage: fiber_gel_regression.py OUTPUT_DIR
 """
+import csv
 import json
 import pathlib
 import sys
@@ -38,6 +39,7 @@ STORED = {"alpha_par": 0.8000163480980029, "alpha_perp": 0.8000161088137387,
 s = json.loads((pathlib.Path(sys.argv[1]) / "summary.json").read_text())
 checks = Checks()
 checks.require(f"run {s['status']}", s["status"] == "completed")
+checks.newton_tolerance(list(csv.DictReader(open(pathlib.Path(sys.argv[1]) / "steps.csv"))))
 gel = GelHeating.from_parameters(s["parameters"])
 checks.relative("chi_A against Eq. 4.7 at phi_i and phi_f", s["chi_A"], gel.chi_A, 1e-12)
 checks.relative("chi_B against Eq. 4.7 at phi_i and phi_f", s["chi_B"], gel.chi_B, 1e-12)

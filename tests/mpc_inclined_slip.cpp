@@ -59,6 +59,7 @@ struct Solution
   std::array<double, 3> top_force;
   double macro_force = NAN;
   std::int64_t slaves = 0;
+  gelx::test::NewtonTolerance tolerance; ///< what the 1e-8 below rests on
 };
 
 enum class Variant
@@ -135,6 +136,7 @@ Solution solve(MPI_Comm comm, Element element, Variant variant)
   gelx::LoadSteppingOptions steps;
   steps.dt = 0.5;
   steps.dt_max = 0.5;
+  Solution s;
   gelx::LoadStepper(mpc, newton, steps,
                     [&](double t)
                     {
@@ -142,9 +144,8 @@ Solution solve(MPI_Comm comm, Element element, Variant variant)
                       if (top >= 0)
                         mpc.prescribe_macro(top, -t * d);
                     })
-      .run();
+      .run(s.tolerance.observer());
 
-  Solution s;
   auto u = element == Element::p2_p1 ? gelx::collapse_sub_function(*w, 0) : w;
   s.X = u->function_space()->tabulate_dof_coordinates(false);
   const std::int32_t owned = u->function_space()->dofmap()->index_map->size_local();
@@ -197,6 +198,9 @@ void check(gelx::test::Checks& checks, MPI_Comm comm, Element element, const std
   const Solution a = solve(comm, element, Variant::dirichlet);
   const Solution b = solve(comm, element, Variant::rotated_slip);
   const Solution c = solve(comm, element, Variant::plane_stays_plane);
+  a.tolerance.check(checks, name + ": roller path");
+  b.tolerance.check(checks, name + ": rotated slip path");
+  c.tolerance.check(checks, name + ": plane-stays-plane path");
   const double u_scale = max_abs(comm, a.u), f = std::abs(a.top_force[2]);
   checks.require(name + ": reference top force " + std::to_string(a.top_force[2])
                      + ", max |u| " + std::to_string(u_scale) + "; slip slaves "

@@ -41,6 +41,9 @@ def load(folder):
 
 (s1, a), (s2, b) = load(sys.argv[1]), load(sys.argv[2])
 checks = Checks()
+for folder in sys.argv[1:3]:
+    checks.newton_tolerance(list(csv.DictReader(open(pathlib.Path(folder) / "steps.csv"))),
+                            f"{folder}: every step")
 p1, p2 = s1["parameters"], s2["parameters"]
 checks.require(f"runs {s1['status']} and {s2['status']}, unloading, G = {p1['G']} and {p2['G']}",
                s1["status"] == s2["status"] == "completed" and p1["unload"] and p2["unload"]

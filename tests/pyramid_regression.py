@@ -17,6 +17,7 @@ invariants.
 
 usage: pyramid_regression.py OUTPUT_DIR
 """
+import csv
 import json
 import math
 import pathlib
@@ -39,6 +40,7 @@ checks.require(f"run {s['status']} to d/H = {s['final_d_over_H']}",
 for key in reference:
     if key != "options":
         checks.relative(f"{key} against the stored value", s[key], reference[key], 1e-6)
+checks.newton_tolerance(list(csv.DictReader(open(out / "steps.csv"))))
 checks.absolute("largest penetration (um)", s["max_penetration"], 0, 1e-8)
 checks.require(f"slope of l_c/L against d/H {s['slope_lc_vs_d']:.4f} in (0.7, 1)",
                0.7 < s["slope_lc_vs_d"] < 1.0)

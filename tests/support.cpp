@@ -61,6 +61,26 @@ int Checks::finish() const
   return _failed > 0 ? 1 : 0;
 }
 
+gelx::StepObserver NewtonTolerance::observer()
+{
+  return [this](const gelx::StepRecord& step, gelx::PathState&)
+  {
+    const auto& r = step.newton;
+    _worst = std::max(_worst, r.residual / std::max(1e-12, 1e-10 * r.residual0));
+    ++_steps;
+  };
+}
+
+void NewtonTolerance::check(Checks& checks, const std::string& what) const
+{
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "%s: every Newton solve met |R| <= max(1e-12, 1e-10 |R0|) (%d steps, worst %.3g "
+                "of it)",
+                what.c_str(), _steps, _worst);
+  checks.require(line, _steps > 0 && _worst <= 1);
+}
+
 int run_checks(int argc, char* argv[],
                const std::function<void(MPI_Comm, Checks&)>& checks_of)
 {

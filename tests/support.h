@@ -10,6 +10,7 @@
 #include <dolfinx/mesh/MeshTags.h>
 #include <functional>
 #include <gelx/boundary.h>
+#include <gelx/path.h>
 #include <memory>
 #include <mpi.h>
 #include <string>
@@ -60,6 +61,21 @@ public:
 private:
   bool _root;
   int _passed = 0, _failed = 0;
+};
+
+/// The final Newton residuals of a path against the tolerance that the tests' own tolerances
+/// rest on ("the state is exact to |R| <= 1e-10 |R0|"): |R| <= max(1e-12, 1e-10 |R0|), the
+/// NewtonSolver defaults, at every step. observer() records the steps, check() asserts the
+/// worst, so that a changed solver default cannot leave a test's justification silently void.
+class NewtonTolerance
+{
+public:
+  gelx::StepObserver observer();
+  void check(Checks& checks, const std::string& what) const;
+
+private:
+  double _worst = 0; ///< largest |R| / max(1e-12, 1e-10 |R0|) over the steps
+  int _steps = 0;
 };
 
 /// The body of a verification program: initialise PETSc and SLEPc, run `checks_of(comm, checks)` with

@@ -89,7 +89,8 @@ int main(int argc, char* argv[])
                                      expression(expression_block_det_F_p2));
       gelx::NewtonSolver newton(comm);
       gelx::LoadStepper stepper(problem, newton, {}, [&](double t) { bcs.update(t); });
-      stepper.run();
+      gelx::test::NewtonTolerance tolerance;
+      stepper.run(tolerance.observer());
 
       const Uniaxial exact = closed_form(G, K, lambda);
       auto r = gelx::boundary_resultant(problem, *box.facets, gelx::test::z_max);
@@ -113,6 +114,7 @@ int main(int argc, char* argv[])
       const std::string tag = "lambda = " + std::to_string(lambda) + ": ";
       // Tolerances: the discrete solution is exact up to the Newton tolerance (relative
       // residual 1e-10) and round-off; 1e-8 leaves two digits of margin.
+      tolerance.check(checks, tag + "the path");
       checks.relative(tag + "sigma_zz (min over cells)", s_min, exact.sigma_zz, 1e-8);
       checks.relative(tag + "sigma_zz (max over cells)", s_max, exact.sigma_zz, 1e-8);
       checks.absolute(tag + "max |lateral and shear stress| / G", s_lat / G, 0.0, 1e-8);

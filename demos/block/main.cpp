@@ -136,6 +136,8 @@ int main(int argc, char* argv[])
                 nlohmann::json row = {{"step", s.step},
                                       {"t", s.load},
                                       {"newton_iterations", s.newton.iterations},
+                                      {"newton_residual", s.newton.residual},
+                                      {"newton_residual0", s.newton.residual0},
                                       {"linear_iterations", s.newton.linear_iterations},
                                       {"cutbacks", s.cutbacks},
                                       {"wall_time", s.wall_time}};

@@ -108,6 +108,8 @@ int main(int argc, char* argv[])
                                      {"alpha_perp_y", c.alpha_y},
                                      {"anisotropy", c.alpha_z / c.alpha_x},
                                      {"newton_iterations", step.newton.iterations},
+                                     {"newton_residual", step.newton.residual},
+                                     {"newton_residual0", step.newton.residual0},
                                      {"cutbacks", step.cutbacks},
                                      {"wall_time", step.wall_time}});
 

@@ -190,6 +190,8 @@ int main(int argc, char* argv[])
                                {"active_nodes", c.active},
                                {"max_penetration", c.penetration},
                                {"newton_iterations", step.newton.iterations},
+                               {"newton_residual", step.newton.residual},
+                               {"newton_residual0", step.newton.residual0},
                                {"cutbacks", step.cutbacks},
                                {"wall_time", step.wall_time}});
           run.summary.update({{"final_d_over_H", d},

@@ -32,14 +32,15 @@ namespace theory = gelx::theory;
 
 namespace
 {
-/// Ramp T from its current value to T_next with the load stepper (t: 0 -> 1).
+/// Ramp T from its current value to T_next with the load stepper (t: 0 -> 1), recording the
+/// Newton residuals in `tolerance`.
 void ramp_temperature(GelBox& gel, gelx::NonlinearProblem& problem, gelx::NewtonSolver& newton,
-                      double T_next)
+                      double T_next, NewtonTolerance& tolerance)
 {
   const double T_prev = gel.constants.at("T")->value[0];
   gelx::LoadStepper stepper(problem, newton, {},
                             [&](double t) { gel.set_temperature(T_prev + t * (T_next - T_prev)); });
-  stepper.run();
+  stepper.run(tolerance.observer());
 }
 
 /// Cauchy stress components (xx, yy, zz, ...) as ranges over the cells.
@@ -72,11 +73,12 @@ int main(int argc, char* argv[])
       gelx::NonlinearProblem problem(gel.u, gel.forms.residual, gel.forms.tangent,
                                      gel.bcs->bcs(), gel.margin);
       gelx::NewtonSolver newton(comm);
+      NewtonTolerance tolerance;
       gel.bcs->update(1.0);
       for (double chi : {0.3, 0.45, 0.55, 0.65, 0.75})
       {
         const double T = p.temperature(chi);
-        ramp_temperature(gel, problem, newton, T);
+        ramp_temperature(gel, problem, newton, T, tolerance);
         const double phi_exact = theory::phi_free(chi, p.n);
         auto s = gel.stretches();
         const double lambda_exact = std::cbrt(p.phi0 / phi_exact);
@@ -100,6 +102,7 @@ int main(int argc, char* argv[])
         checks.absolute(std::string(name) + "max |sigma| / (kT/nu)", s_max / p.kT_nu(T), 0.0,
                         1e-10);
       }
+      tolerance.check(checks, "free swelling: the temperature ramps");
     }
 
     // 2. Uniaxially constrained (Fig. 4.5b): lambda_par with phi_c = 0.3, chi on both sides of
@@ -115,14 +118,15 @@ int main(int argc, char* argv[])
       gelx::NewtonSolver newton(comm);
       // Apply the constraint at the initial temperature, then change chi at fixed lambda_par
       gelx::LoadStepper constrain(problem, newton, {}, [&](double t) { gel.bcs->update(t); });
-      constrain.run();
+      NewtonTolerance tolerance;
+      constrain.run(tolerance.observer());
       const double chi_c = theory::chi_free(phi_c, p.n);
       // Counts of the states on each side of phi_c and of those with the sign of Eq. 4.11
       int below = 0, above = 0, negative_below = 0, positive_above = 0;
       for (double chi : {0.45, 0.52, 0.62, 0.7, 0.8})
       {
         const double T = p.temperature(chi);
-        ramp_temperature(gel, problem, newton, T);
+        ramp_temperature(gel, problem, newton, T, tolerance);
         const double phi_exact = theory::phi_constrained(chi, lambda_par, p.n);
         auto s = gel.stretches();
         const double phi = p.phi0 / (s[0].first * s[1].first * s[2].first);
@@ -156,6 +160,7 @@ int main(int argc, char* argv[])
           std::printf("      phi = %.8f  phi - phi_c = %+.4f  sigma3 nu/kT = %+.6e\n", phi,
                       phi - phi_c, sigma3);
       }
+      tolerance.check(checks, "uniaxially constrained gel: the temperature ramps");
       // The sign change needs states on both sides: the chi values above straddle chi_c
       checks.require("states on both sides of phi_c: " + std::to_string(below) + " below, "
                          + std::to_string(above) + " above",

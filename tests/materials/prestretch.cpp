@@ -110,10 +110,18 @@ int main(int argc, char* argv[])
       };
       gelx::LoadStepper stepper(problem, newton, {}, apply);
       int steps = 0, iterations = 0;
-      stepper.run([&](const gelx::StepRecord& r, gelx::PathState&) { ++steps, iterations += r.newton.iterations; });
+      NewtonTolerance tolerance;
+      gelx::PathState path;
+      stepper.run(path, {tolerance.observer(),
+                         [&](const gelx::StepRecord& r, gelx::PathState&)
+                         {
+                           ++steps;
+                           iterations += r.newton.iterations;
+                         }});
       if (root)
         std::printf("      prestretch applied in %d steps, %d Newton iterations\n", steps,
                     iterations);
+      tolerance.check(checks, "the prestretch path");
       auto stress = make_expression(degree == 1 ? expression_compressible_stress_nh_p1
                                                 : expression_compressible_stress_nh_p2,
                                     coefficients, constants, box.mesh);

@@ -5,6 +5,7 @@
 //   ./gelx run pyramid --order 2 --cells 2
 //   ./gelx run pyramid --W 12 --t 8 --np 2
 //   ./gelx run pyramid --law le
+//   ./gelx run pyramid --domain eighth
 //
 // A pyramid of base width L and height H = L/sqrt(2) (semi-apex angle arctan(1/sqrt(2)), the
 // {111} facets of a silicon mould) stands on a base of thickness t in a square array of period
@@ -13,11 +14,13 @@
 // (Eq. 1.10; or Mooney-Rivlin or linear elastic, --law) in mixed u-p form on Q1-P0 hexahedra,
 // the thesis' hybrid bricks, or Q2-Q1 (--order 2).
 // By symmetry one quarter of the unit cell is modelled (pyramid_mesh.h: a structured hexahedral
-// tip graded toward the apex, after thesis Fig. 2.2b). The contact is an exact active set on
-// the nodes of the lateral faces (gelx::RigidPlaneContact). Per step we record the force f,
-// the contact width l_c (the patch's extent along a base edge) and area A_c; the thesis finds
-// l_c/L = 0.86 d/H (Fig. 2.3b) and l_c ∝ f^(1/2) (Fig. 2.4a). The deformed lateral faces are
-// written as STL per step (surface/), for optics codes.
+// tip graded toward the apex, after thesis Fig. 2.2b), or the eighth, the wedge between the
+// quarter's mirror plane y = 0 and its diagonal mirror plane x = y (--domain eighth: slip on
+// the diagonal by a multipoint constraint, gelx::MultipointConstraint). The contact is an
+// exact active set on the nodes of the lateral faces (gelx::RigidPlaneContact). Per step we
+// record the force f, the contact width l_c (the patch's extent along a base edge) and area
+// A_c; the thesis finds l_c/L = 0.86 d/H (Fig. 2.3b) and l_c ∝ f^(1/2) (Fig. 2.4a). The
+// deformed lateral faces are written as STL per step (surface/), for optics codes.
 
 #include "pyramid.h"
 
@@ -130,9 +133,13 @@ int main(int argc, char* argv[])
   prm.bind("mesh", "growth", g.growth, "cell size ratio in the base, away from the pyramid",
            [](double v) { return v >= 1 ? "" : "must be at least 1"; });
   prm.bind("mesh", "domain", g.domain,
-           "quarter: the quarter cell with mirror planes x = 0, y = 0; half: the half x >= 0",
+           "quarter: the quarter cell with mirror planes x = 0, y = 0; eighth: the wedge "
+           "0 <= y <= x with slip on the diagonal plane x = y; half: the half x >= 0",
            [](const std::string& v)
-           { return v == "quarter" || v == "half" ? "" : "must be quarter or half"; });
+           {
+             const bool known = v == "quarter" || v == "eighth" || v == "half";
+             return known ? "" : "must be quarter, eighth or half";
+           });
   prm.bind("mesh", "order", m.order, "displacement degree: 2 (Q2-Q1) or 1 (Q1-P0)",
            [](int v) { return v == 1 || v == 2 ? "" : "must be 1 or 2"; });
   prm.bind("material", "law", m.law,
@@ -162,7 +169,7 @@ int main(int argc, char* argv[])
     gelx::set_default_option("newton_", "snes_linesearch_type", "basic");
     gelx::set_default_option("newton_", "snes_max_it", "40");
 
-    // 2. The quarter cell: mesh, material, symmetry, contact
+    // 2. The modelled part of the cell: mesh, material, symmetry, contact
     gelx::scenes::PressedPyramid pyramid(run.comm(), g, m);
 
     // 3. Press, writing every step's fields, STL surface and measures
@@ -170,7 +177,10 @@ int main(int argc, char* argv[])
     gelx::FieldSet fields;
     fields.add("sigma", pyramid.stress());
     fields.add("displacement", pyramid.displacement());
+    PetscInt num_unknowns; // the dofs less the eighth's slip-constrained ones
+    GELX_PETSC(VecGetSize(pyramid.system().unknowns(), &num_unknowns));
     run.summary = {{"num_dofs", pyramid.state()->function_space()->dofmap()->index_map->size_global()},
+                   {"num_unknowns", num_unknowns},
                    {"num_cells", pyramid.mesh().mesh->topology().index_map(3)->size_global()}};
     const WidthCurve curve = press(
         pyramid, loading, stepping, g.L,

@@ -11,7 +11,6 @@
 #include <gelx/collectives.h>
 #include <gelx/mixed.h>
 #include <gelx/parameters.h>
-#include <set>
 
 using namespace dolfinx;
 
@@ -63,12 +62,20 @@ LawForms law_forms(const std::string& law, int order)
 }
 } // namespace
 
+std::vector<PressedPyramid::Image> PressedPyramid::images(const std::string& domain)
+{
+  if (domain == "half")
+    return {{false, 1, 1}, {false, -1, 1}};
+  std::vector<Image> result = {{false, 1, 1}, {false, 1, -1}, {false, -1, 1}, {false, -1, -1}};
+  if (domain == "eighth") // and their mirror images in x = y
+    for (int k = 0; k < 4; ++k)
+      result.push_back({true, result[k].sx, result[k].sy});
+  return result;
+}
+
 PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry,
                                const PyramidMaterial& material)
-    : _g(geometry), _H(geometry.L / std::sqrt(2.0)),
-      _images(geometry.domain == "half" ? std::vector<std::array<double, 2>>{{1, 1}, {-1, 1}}
-                                 : std::vector<std::array<double, 2>>{
-                                     {1, 1}, {1, -1}, {-1, 1}, {-1, -1}}),
+    : _g(geometry), _H(geometry.L / std::sqrt(2.0)), _images(images(geometry.domain)),
       _mesh(pyramid_mesh(comm, geometry))
 {
   const LawForms kernels = law_forms(material.law, material.order);
@@ -87,14 +94,15 @@ PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry,
         fem::create_form<double>(*f, spaces, {{"w", _w}}, constants, {}, _mesh.mesh));
   };
 
-  // Clamped bottom; the four sides are mirror planes of the periodic array
+  // Clamped bottom; the axis-aligned sides are mirror planes of the periodic array (the eighth
+  // has no x = 0 and y = W/2)
   auto displacement = W->sub({0});
   _bcs = std::make_unique<DirichletConditions>(displacement, _mesh.facet_tags);
   _bcs->clamp(_mesh.tag("bottom"));
-  _bcs->fix(_mesh.tag("sym_x"), 0);
-  _bcs->fix(_mesh.tag("side_x"), 0);
-  _bcs->fix(_mesh.tag("sym_y"), 1);
-  _bcs->fix(_mesh.tag("side_y"), 1);
+  for (const auto& [plane, normal] : std::vector<std::pair<std::string, int>>{
+           {"sym_x", 0}, {"side_x", 0}, {"sym_y", 1}, {"side_y", 1}})
+    if (_mesh.names.count(plane))
+      _bcs->fix(_mesh.tag(plane), normal);
   _bcs->update(0);
   // Iterates that invert an element are rejected, except for the small-strain law: it is
   // defined for every displacement gradient, and at the crushed apex its (unphysical) inverted
@@ -105,8 +113,19 @@ PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry,
                        *kernels.det_F, {{"w", _w}}, {}, _mesh.mesh));
   _problem = std::make_unique<NonlinearProblem>(
       _w, form(kernels.residual, {W}), form(kernels.tangent, {W, W}), _bcs->bcs(), det_F);
+  // The eighth's diagonal plane x = y is a mirror plane too, but not axis-aligned: slip on it
+  // as a multipoint constraint (its slaves are x or y components, so the contact's z stays
+  // free)
+  NonlinearSystem* symmetric = _problem.get();
+  if (_mesh.names.count("diagonal"))
+  {
+    _diagonal_slip = std::make_unique<MultipointConstraint>(*_problem, displacement);
+    _diagonal_slip->slip(*_mesh.facet_tags, _mesh.tag("diagonal"), {1, -1, 0});
+    _diagonal_slip->finalize();
+    symmetric = _diagonal_slip.get();
+  }
   // The substrate z = t + H - d below which the body must stay (side -1)
-  _contact = std::make_unique<RigidPlaneContact>(*_problem, displacement, *_mesh.facet_tags,
+  _contact = std::make_unique<RigidPlaneContact>(*symmetric, displacement, *_mesh.facet_tags,
                                                  _mesh.tag("lateral"), 2, -1);
   set_indentation(0);
   _stress = std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
@@ -136,8 +155,9 @@ ContactMeasures PressedPyramid::measure()
   displacement(); // the area form's displacement
   m.area = _images.size() * assemble_global_scalar(*_area);
 
-  // The width: the patch's corners lie on the pyramid's edges x = y, so l_c = 2 x_corner,
-  // where the contact level set changes sign along the edge (linear between its nodes)
+  // The width: the patch's corners lie on the pyramid's edges x = y (in the eighth: its
+  // diagonal plane), so l_c = 2 x_corner, where the contact level set changes sign along the
+  // edge (linear between its nodes)
   std::vector<double> edge; // (distance from the apex, level set, current x) per node
   const double tol = 1e-8 * _g.L;
   for (const auto& n : _contact->nodes())
@@ -171,18 +191,41 @@ std::vector<std::array<double, 4>> PressedPyramid::patch() const
       reach = std::max({reach, std::abs(n.x[0]), std::abs(n.x[1])});
   MPI_Comm comm = _mesh.mesh->comm();
   MPI_Allreduce(MPI_IN_PLACE, &reach, 1, MPI_DOUBLE, MPI_MAX, comm);
-  std::vector<double> local;
+  std::vector<double> local; // X, Y, x, y, force, in contact
   for (const auto& n : nodes)
     if (std::max(std::abs(n.x[0]), std::abs(n.x[1])) <= 2 * reach)
-      local.insert(local.end(), {n.x[0], n.x[1], n.active ? n.force : 0.0, double(n.active)});
+      local.insert(local.end(), {n.X[0], n.X[1], n.x[0], n.x[1], n.active ? n.force : 0.0,
+                                 double(n.active)});
   const std::vector<double> all = all_gather(comm, local);
-  // Mirror the modelled part into the whole patch; nodes on a mirror plane appear once
-  std::set<std::array<double, 4>> result;
+  // Mirror the modelled part into the whole patch. A node on mirror planes is its own image
+  // under some reflections: it appears once, with the forces of all the parts that share it
+  // (its force in the modelled part times the number of images that fix it)
+  std::vector<std::array<double, 4>> result;
+  const double tol = 1e-8 * _g.L;
   if (dolfinx::MPI::rank(comm) == 0)
-    for (std::size_t i = 0; i < all.size(); i += 4)
-      for (const auto& [sx, sy] : _images)
-        result.insert({sx * all[i], sy * all[i + 1], all[i + 2], all[i + 3]});
-  return {result.begin(), result.end()};
+    for (std::size_t i = 0; i < all.size(); i += 6)
+    {
+      std::vector<const Image*> distinct;
+      for (const Image& image : _images)
+      {
+        const auto X = image(all[i], all[i + 1]);
+        auto same = [&](const Image* other)
+        {
+          const auto Y = (*other)(all[i], all[i + 1]);
+          return std::hypot(X[0] - Y[0], X[1] - Y[1]) < tol;
+        };
+        if (std::none_of(distinct.begin(), distinct.end(), same))
+          distinct.push_back(&image);
+      }
+      const double shares = double(_images.size()) / distinct.size();
+      for (const Image* image : distinct)
+      {
+        const auto [x, y] = (*image)(all[i + 2], all[i + 3]);
+        result.push_back({x, y, shares * all[i + 4], all[i + 5]});
+      }
+    }
+  std::sort(result.begin(), result.end());
+  return result;
 }
 
 std::vector<Triangle>
@@ -190,15 +233,16 @@ PressedPyramid::contact_side_surface(const fem::Function<double>& u_p1) const
 {
   const auto part = deformed_surface(u_p1, *_mesh.facet_tags, _mesh.tag("lateral"));
   std::vector<Triangle> whole;
-  for (const auto& [sx, sy] : _images)
+  for (const Image& image : _images)
     for (Triangle t : part)
     {
       for (auto& vertex : t)
       {
-        vertex[0] *= sx;
-        vertex[1] *= sy;
+        const auto [x, y] = image(vertex[0], vertex[1]);
+        vertex[0] = x;
+        vertex[1] = y;
       }
-      if (sx * sy < 0) // a reflection turns the triangle inside out
+      if (image.reflects()) // a reflection turns the triangle inside out
         std::swap(t[1], t[2]);
       whole.push_back(t);
     }

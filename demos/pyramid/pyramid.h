@@ -1,7 +1,7 @@
 #pragma once
 /// @file pyramid.h
 /// An elastomeric pyramid on its base pressed by a rigid substrate (thesis ch. 2): one quarter
-/// of the unit cell (pyramid_mesh.h), an incompressible law in mixed u-p form on Q2-Q1
+/// (or eighth, or half) of the unit cell (pyramid_mesh.h), an incompressible law in mixed u-p form on Q2-Q1
 /// (forms/mixed_hex.py) or Q1-P0 hexahedra (forms/mixed_hex_q1.py), frictionless contact with
 /// the plane (gelx::RigidPlaneContact).
 
@@ -11,6 +11,7 @@
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <gelx/boundary.h>
+#include <gelx/constraints.h>
 #include <gelx/contact.h>
 #include <gelx/output.h>
 #include <gelx/problem.h>
@@ -27,7 +28,7 @@ struct ContactMeasures
   double force = 0;        ///< compression force f (G times um^2: uN for G in MPa)
   double width = 0;        ///< contact width l_c: the patch's extent along a base edge
   double area = 0;         ///< contact area A_c
-  std::int64_t active = 0; ///< nodes in contact (in the quarter)
+  std::int64_t active = 0; ///< nodes in contact (in the modelled part)
   double penetration = 0;  ///< largest node distance behind the substrate
 };
 
@@ -42,6 +43,11 @@ struct PyramidMaterial
   int order = 1;             ///< displacement degree: 1 (Q1-P0) or 2 (Q2-Q1)
 };
 
+/// The pyramid on the domain of PyramidGeometry::domain with its symmetry conditions: zero
+/// normal displacement on the mirror planes x = 0, y = 0 and x, y = W/2 of the periodic array
+/// (Dirichlet rollers), and on the eighth's diagonal plane x = y, which is not axis-aligned,
+/// frictionless slip u.n = 0 (gelx::MultipointConstraint::slip); the contact acts on that
+/// constrained system.
 class PressedPyramid
 {
 public:
@@ -63,7 +69,9 @@ public:
 
   /// The candidate nodes of the whole pyramid (current x, y, contact force, 1 in contact or
   /// 0) within twice the patch's reach of the axis, on rank 0 (others: empty): a pressure map
-  /// that shows the patch's edges between contact and free nodes. Collective.
+  /// that shows the patch's edges between contact and free nodes. Each node appears once, with
+  /// its force in the whole pyramid (on a mirror plane: the forces of the parts that share it).
+  /// Collective.
   std::vector<std::array<double, 4>> patch() const;
 
   /// The deformed lateral faces of the whole pyramid (the modelled part and its images), from
@@ -75,14 +83,29 @@ public:
   std::shared_ptr<dolfinx::fem::Function<double>> displacement();
 
 private:
+  /// A reflection (or the identity) that maps the modelled part onto part of the whole pyramid:
+  /// (x, y) -> (sx x, sy y), after swapping x and y (the reflection in x = y) if `swap`.
+  struct Image
+  {
+    bool swap;
+    double sx, sy;
+    std::array<double, 2> operator()(double x, double y) const
+    {
+      return swap ? std::array<double, 2>{sx * y, sy * x} : std::array<double, 2>{sx * x, sy * y};
+    }
+    /// Whether it reverses orientation (turns a triangle inside out)
+    bool reflects() const { return (sx * sy < 0) != swap; }
+  };
+  static std::vector<Image> images(const std::string& domain);
+
   PyramidGeometry _g;
   double _H;
-  /// The reflections (x, y signs) that map the modelled part onto the whole pyramid
-  std::vector<std::array<double, 2>> _images;
+  std::vector<Image> _images;
   TaggedMesh _mesh;
   std::shared_ptr<dolfinx::fem::Function<double>> _w, _u;
   std::unique_ptr<DirichletConditions> _bcs;
   std::unique_ptr<NonlinearProblem> _problem;
+  std::unique_ptr<MultipointConstraint> _diagonal_slip; ///< the eighth's only
   std::unique_ptr<RigidPlaneContact> _contact;
   std::shared_ptr<const dolfinx::fem::Expression<double>> _stress;
   std::shared_ptr<dolfinx::fem::Form<double>> _area;

@@ -166,6 +166,61 @@ bool on_plane(const std::vector<Point>& points, const std::array<double, 4>& pla
       return false;
   return true;
 }
+
+/// The size of the pyramid's cells at its foot (half an edge in `cells` cells), where the base's
+/// grading starts.
+double foot_cell(const PyramidGeometry& g) { return 0.25 * g.L / g.cells; }
+
+/// The top of the base and the pyramid over the eighth 0 <= y <= x of the cell, or over its
+/// mirror image in the plane x = y (`mirrored`: x and y swapped): the tetrahedron A O P Q in
+/// hexahedra, and the top of the base outside the pyramid as two quadrilaterals between the
+/// pyramid's foot x = a, the side x = w and the lines y = 0, y = x/2 and y = x, graded away
+/// from the pyramid. Returns the base's top faces (the pyramid's footprint and the rest), to
+/// be extruded.
+///
+/// Why this top face: it has the diagonal x = y as a mesh line, so that the quarter, built as
+/// this part and its mirror image, is meshed conformingly on the diagonal plane, and the eighth
+/// alone is exactly half of the quarter's mesh. Its columns are straight lines x = const with
+/// 2 cells rows of height x / (2 cells): the pyramid's foot spacing at x = a.
+gmsh::vectorpair build_eighth(HexBuilder& mesh, const PyramidGeometry& g, bool mirrored)
+{
+  const double a = g.L / 2, w = g.W / 2, H = g.L / std::sqrt(2.0), t = g.t;
+  auto image = [&](const Point& p) { return mirrored ? Point{p[1], p[0], p[2]} : p; };
+  const Point A = image({0, 0, t + H}), O = image({0, 0, t}), P = image({a, 0, t}),
+              Q = image({a, a, t});
+  std::vector<double> fractions;
+  for (int k = g.tip_levels; k >= 0; --k)
+    fractions.push_back(std::pow(0.5, k));
+  split_tetrahedron(mesh, A, {O, P, Q}, fractions);
+  for (int l : mesh.take_new_lines())
+    gmsh::model::geo::mesh::setTransfiniteCurve(std::abs(l), g.cells + 1);
+
+  // The top of the base outside the pyramid: two quadrilaterals graded away from it
+  const auto [n_out, ratio] = graded(w - a, foot_cell(g), g.growth);
+  const int p = mesh.point(P), m = mesh.point(mix({P, Q})), q = mesh.point(Q),
+            p_out = mesh.point(image({w, 0, t})), m_out = mesh.point(image({w, w / 2, t})),
+            corner = mesh.point(image({w, w, t}));
+  // Outward lines first, from the pyramid, so that their progression grows outward; the three
+  // share one progression, so that their nodes lie on the same lines x = const
+  for (auto [from, to] : std::vector<std::pair<int, int>>{{p, p_out}, {m, m_out}, {q, corner}})
+  {
+    const int l = mesh.line(from, to);
+    gmsh::model::geo::mesh::setTransfiniteCurve(std::abs(l), n_out + 1, "Progression",
+                                                l > 0 ? ratio : 1 / ratio);
+  }
+  mesh.take_new_lines();
+  gmsh::vectorpair top;
+  for (const std::array<int, 4>& r :
+       std::vector<std::array<int, 4>>{{p, p_out, m_out, m}, {m, m_out, corner, q}})
+    top.push_back({2, mesh.quad(r)});
+  for (int l : mesh.take_new_lines()) // the side's edges, parallel to the pyramid's foot
+    gmsh::model::geo::mesh::setTransfiniteCurve(std::abs(l), g.cells + 1);
+  // ... and the pyramid's footprint: the bottoms of its lowest hexahedra
+  for (const auto& [X, Y, Z] : std::vector<std::array<Point, 3>>{{O, P, Q}, {P, Q, O}, {Q, O, P}})
+    top.push_back({2, mesh.quad({mesh.point(X), mesh.point(mix({X, Y})),
+                                 mesh.point(mix({X, Y, Z})), mesh.point(mix({X, Z}))})});
+  return top;
+}
 } // namespace
 
 TaggedMesh pyramid_mesh(MPI_Comm comm, const PyramidGeometry& g)
@@ -173,62 +228,24 @@ TaggedMesh pyramid_mesh(MPI_Comm comm, const PyramidGeometry& g)
   const double a = g.L / 2, w = g.W / 2, H = g.L / std::sqrt(2.0), t = g.t;
   if (!(a < w))
     throw std::invalid_argument("the cell width W must exceed the pyramid width L");
+  const bool eighth = g.domain == "eighth";
   auto build = [&]()
   {
     gmsh::model::add("pyramid");
     HexBuilder mesh(g.L);
-    // The quarter pyramid: two tetrahedra sharing the diagonal plane x = y
-    const Point A = {0, 0, t + H}, O = {0, 0, t}, P = {a, 0, t}, Q = {a, a, t}, S = {0, a, t};
-    std::vector<double> fractions;
-    for (int k = g.tip_levels; k >= 0; --k)
-      fractions.push_back(std::pow(0.5, k));
-    split_tetrahedron(mesh, A, {O, P, Q}, fractions);
-    split_tetrahedron(mesh, A, {O, Q, S}, fractions);
-    for (int l : mesh.take_new_lines())
-      gmsh::model::geo::mesh::setTransfiniteCurve(std::abs(l), g.cells + 1);
-
-    // The top of the base outside the pyramid: five quadrilaterals graded away from it
-    const double first = 0.5 * a / g.cells; // the pyramid's cells at its foot
-    const auto [n_out, ratio] = graded(w - a, first, g.growth);
-    const Point P_out = {w, 0, t}, mPQ = mix({P, Q}), mPQ_out = {w, a / 2, t},
-                Q_x = {w, a, t}, Q_y = {a, w, t}, corner = {w, w, t}, mQS = mix({Q, S}),
-                mQS_out = {a / 2, w, t}, S_out = {0, w, t};
-    const int p = mesh.point(P), q = mesh.point(Q), s = mesh.point(S), m1 = mesh.point(mPQ),
-              m2 = mesh.point(mQS);
-    const int p_o = mesh.point(P_out), m1_o = mesh.point(mPQ_out), qx = mesh.point(Q_x),
-              qy = mesh.point(Q_y), c = mesh.point(corner), m2_o = mesh.point(mQS_out),
-              s_o = mesh.point(S_out);
-    // Outward lines first, from the pyramid, so that their progression grows outward
-    for (auto [from, to] : std::vector<std::pair<int, int>>{
-             {p, p_o}, {m1, m1_o}, {q, qx}, {q, qy}, {m2, m2_o}, {s, s_o}, {qx, c}, {qy, c}})
+    // The eighth 0 <= y <= x, and for the quarter its mirror image in x = y
+    gmsh::vectorpair top = build_eighth(mesh, g, false);
+    if (!eighth)
     {
-      const int l = mesh.line(from, to);
-      gmsh::model::geo::mesh::setTransfiniteCurve(std::abs(l), n_out + 1, "Progression",
-                                                  l > 0 ? ratio : 1 / ratio);
-    }
-    mesh.take_new_lines();
-    std::vector<std::pair<int, int>> top;
-    for (const std::array<int, 4>& r : std::vector<std::array<int, 4>>{
-             {p, p_o, m1_o, m1}, {m1, m1_o, qx, q}, {q, qx, c, qy}, {m2, q, qy, m2_o},
-             {s, m2, m2_o, s_o}})
-      top.push_back({2, mesh.quad(r)});
-    for (int l : mesh.take_new_lines()) // the outer edges, parallel to the pyramid's
-      gmsh::model::geo::mesh::setTransfiniteCurve(std::abs(l), g.cells + 1);
-    // ... and the pyramid's footprint: the bottoms of its lowest hexahedra
-    for (const auto& [X, B] : std::vector<std::pair<Point, std::array<Point, 2>>>{
-             {O, {P, Q}}, {P, {Q, O}}, {Q, {O, P}}, {O, {Q, S}}, {Q, {S, O}}, {S, {O, Q}}})
-    {
-      const Point& Y = B[0];
-      const Point& Z = B[1];
-      top.push_back({2, mesh.quad({mesh.point(X), mesh.point(mix({X, Y})),
-                                   mesh.point(mix({X, Y, Z})), mesh.point(mix({X, Z}))})});
+      const gmsh::vectorpair mirrored = build_eighth(mesh, g, true);
+      top.insert(top.end(), mirrored.begin(), mirrored.end());
     }
 
     // The base: the top face extruded down in layers growing away from it
-    const auto [n_layers, layer_ratio] = graded(t, first, g.growth);
+    const auto [n_layers, layer_ratio] = graded(t, foot_cell(g), g.growth);
     std::vector<int> one_each(n_layers, 1);
     std::vector<double> heights;
-    double h = first, z = 0;
+    double h = foot_cell(g), z = 0;
     for (int k = 0; k < n_layers; ++k, h *= layer_ratio)
       heights.push_back((z += h) / t);
     heights.back() = 1.0;
@@ -245,10 +262,12 @@ TaggedMesh pyramid_mesh(MPI_Comm comm, const PyramidGeometry& g)
     gmsh::model::addPhysicalGroup(3, volume_tags, 1);
     gmsh::model::setPhysicalName(3, 1, "body");
     const double tol = 1e-8 * g.L;
-    const std::vector<std::pair<std::string, std::array<double, 4>>> planes
+    std::vector<std::pair<std::string, std::array<double, 4>>> planes
         = {{"bottom", {0, 0, 1, 0}},   {"sym_x", {1, 0, 0, 0}},      {"sym_y", {0, 1, 0, 0}},
            {"side_x", {1, 0, 0, w}},   {"side_y", {0, 1, 0, w}},
            {"lateral", {1 / a, 0, 1 / H, 1 + t / H}}, {"lateral", {0, 1 / a, 1 / H, 1 + t / H}}};
+    if (eighth) // (in the quarter the diagonal plane is interior)
+      planes.push_back({"diagonal", {1, -1, 0, 0}});
     std::map<std::string, std::vector<int>> groups;
     gmsh::model::getEntities(surfaces, 2);
     for (auto [d, tag] : surfaces)

@@ -1,6 +1,7 @@
 #pragma once
 /// @file pyramid_mesh.h
-/// A structured hexahedral mesh of one quarter of the pyramid unit cell (thesis Fig. 2.2).
+/// A structured hexahedral mesh of one eighth, one quarter or one half of the pyramid unit cell
+/// (thesis Fig. 2.2).
 
 #include <gelx/mesh.h>
 #include <mpi.h>
@@ -17,15 +18,17 @@ struct PyramidGeometry
   int cells = 4;   ///< hexahedra along each edge of a pyramid block
   int tip_levels = 3; ///< apex refinement: the tip is cut at H/2, H/4, ... this many times
   double growth = 1.5; ///< size ratio of neighbouring cells in the base, away from the pyramid
-  /// "quarter": the quarter x, y >= 0 of the unit cell; "half": the half x >= 0 (the quarter
-  /// and its mirror image in y = 0), to show that the quarter's symmetry conditions do not
-  /// change the answer
+  /// "quarter": the quarter x, y >= 0 of the unit cell; "eighth": the wedge 0 <= y <= x of the
+  /// quarter (the quarter is symmetric about the plane x = y as well); "half": the half x >= 0
+  /// (the quarter and its mirror image in y = 0). The eighth's mesh is the quarter's on one
+  /// side of the diagonal, and the half's is the quarter's and its mirror image, so that the
+  /// three share their discrete solution: the symmetry conditions change nothing.
   std::string domain = "quarter";
 };
 
-/// The quarter x, y >= 0 (or the half x >= 0, PyramidGeometry::domain) of the unit cell
-/// [-W/2, W/2]^2: the base [0, W/2]^2 x [0, t] and on
-/// it the pyramid over [0, L/2]^2 with its apex at (0, 0, t + H), all hexahedra.
+/// The quarter x, y >= 0 (or the eighth 0 <= y <= x, or the half x >= 0,
+/// PyramidGeometry::domain) of the unit cell [-W/2, W/2]^2: the base [0, W/2]^2 x [0, t] and
+/// on it the pyramid over [0, L/2]^2 with its apex at (0, 0, t + H), all hexahedra.
 ///
 /// Why this mesh: contact starts at the apex, a sharp corner where tetrahedra are crushed
 /// (shared/NOTES.md: uniform P2-P1 tetrahedra stall at d/H = 0.2-0.34). As in thesis
@@ -34,12 +37,18 @@ struct PyramidGeometry
 /// midpoints, face centroids and the centroid), and below a stack of horizontal cuts at
 /// H/2, H/4, ... from the apex into triangular frusta of three hexahedra each, so that the
 /// cells shrink geometrically toward the apex and every cell keeps the shape of a corner of the
-/// tetrahedron. The base is extruded from its top face in layers that grow away from the
-/// pyramid.
+/// tetrahedron. The top face of the base outside the pyramid is meshed in columns x = const
+/// (y = const on the other side of the diagonal) graded away from the pyramid, with the
+/// diagonal x = y as a mesh line, and the base is extruded from it in layers that grow away
+/// from the pyramid. So the whole mesh is conforming on the diagonal plane and symmetric about
+/// it: the eighth is built as the tetrahedron A O P Q and the base below the wedge, the quarter
+/// as that and its mirror image in x = y.
 ///
 /// Physical groups: volume "body"; surfaces "bottom" (z = 0), "sym_x" (x = 0), "sym_y" (y = 0),
-/// "side_x" (x = W/2), "side_y" (y = W/2), and "lateral", the two lateral faces of the pyramid
-/// (the contact candidates).
+/// "side_x" (x = W/2), "side_y" (y = W/2), "lateral", the lateral faces of the pyramid (the
+/// contact candidates; one in the eighth, two in the quarter), and in the eighth "diagonal"
+/// (x = y; it has no "sym_x" and "side_y"). The half has the quarter's groups (its y = 0
+/// plane is interior).
 TaggedMesh pyramid_mesh(MPI_Comm comm, const PyramidGeometry& g);
 
 } // namespace gelx::scenes

@@ -140,6 +140,11 @@ int main(int argc, char* argv[])
              const bool known = v == "quarter" || v == "eighth" || v == "half";
              return known ? "" : "must be quarter, eighth or half";
            });
+  prm.bind("mesh", "base", g.base,
+           "corner: the base's top meshed with a block at the cell corner; diagonal: with the "
+           "diagonal x = y as a mesh line (needed by the eighth)",
+           [](const std::string& v)
+           { return v == "corner" || v == "diagonal" ? "" : "must be corner or diagonal"; });
   prm.bind("mesh", "order", m.order, "displacement degree: 2 (Q2-Q1) or 1 (Q1-P0)",
            [](int v) { return v == 1 || v == 2 ? "" : "must be 1 or 2"; });
   prm.bind("material", "law", m.law,
@@ -162,6 +167,9 @@ int main(int argc, char* argv[])
   {
     if (g.W <= g.L)
       throw gelx::InputError("the array period W must exceed the pyramid width L");
+    if (g.domain == "eighth" && g.base != "diagonal")
+      throw gelx::InputError("the eighth needs the base meshed along the diagonal "
+                             "(--base diagonal)");
     stepping.check();
     // Full Newton steps (still halved if an element inverts): when nodes enter or leave the
     // active set the residual norm jumps, and a decrease test then stalls the semismooth

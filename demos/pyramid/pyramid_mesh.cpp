@@ -221,6 +221,57 @@ gmsh::vectorpair build_eighth(HexBuilder& mesh, const PyramidGeometry& g, bool m
                                  mesh.point(mix({X, Y, Z})), mesh.point(mix({X, Z}))})});
   return top;
 }
+
+/// The top of the base and the pyramid over the quarter 0 <= x, y of the cell, with the top of
+/// the base outside the pyramid as five quadrilaterals graded away from it: two along each
+/// side of the pyramid's foot and a block at the cell's corner (which straddles the diagonal
+/// x = y). Returns the base's top faces (the pyramid's footprint and the rest), to be
+/// extruded. The layout of the default quarter and half; the eighth needs build_eighth's.
+gmsh::vectorpair build_quarter_with_corner_block(HexBuilder& mesh, const PyramidGeometry& g)
+{
+  const double a = g.L / 2, w = g.W / 2, H = g.L / std::sqrt(2.0), t = g.t;
+  // The quarter pyramid: two tetrahedra sharing the diagonal plane x = y
+  const Point A = {0, 0, t + H}, O = {0, 0, t}, P = {a, 0, t}, Q = {a, a, t}, S = {0, a, t};
+  std::vector<double> fractions;
+  for (int k = g.tip_levels; k >= 0; --k)
+    fractions.push_back(std::pow(0.5, k));
+  split_tetrahedron(mesh, A, {O, P, Q}, fractions);
+  split_tetrahedron(mesh, A, {O, Q, S}, fractions);
+  for (int l : mesh.take_new_lines())
+    gmsh::model::geo::mesh::setTransfiniteCurve(std::abs(l), g.cells + 1);
+
+  const auto [n_out, ratio] = graded(w - a, foot_cell(g), g.growth);
+  const Point P_out = {w, 0, t}, mPQ = mix({P, Q}), mPQ_out = {w, a / 2, t}, Q_x = {w, a, t},
+              Q_y = {a, w, t}, corner = {w, w, t}, mQS = mix({Q, S}), mQS_out = {a / 2, w, t},
+              S_out = {0, w, t};
+  const int p = mesh.point(P), q = mesh.point(Q), s = mesh.point(S), m1 = mesh.point(mPQ),
+            m2 = mesh.point(mQS);
+  const int p_o = mesh.point(P_out), m1_o = mesh.point(mPQ_out), qx = mesh.point(Q_x),
+            qy = mesh.point(Q_y), c = mesh.point(corner), m2_o = mesh.point(mQS_out),
+            s_o = mesh.point(S_out);
+  // Outward lines first, from the pyramid, so that their progression grows outward
+  for (auto [from, to] : std::vector<std::pair<int, int>>{
+           {p, p_o}, {m1, m1_o}, {q, qx}, {q, qy}, {m2, m2_o}, {s, s_o}, {qx, c}, {qy, c}})
+  {
+    const int l = mesh.line(from, to);
+    gmsh::model::geo::mesh::setTransfiniteCurve(std::abs(l), n_out + 1, "Progression",
+                                                l > 0 ? ratio : 1 / ratio);
+  }
+  mesh.take_new_lines();
+  gmsh::vectorpair top;
+  for (const std::array<int, 4>& r : std::vector<std::array<int, 4>>{
+           {p, p_o, m1_o, m1}, {m1, m1_o, qx, q}, {q, qx, c, qy}, {m2, q, qy, m2_o},
+           {s, m2, m2_o, s_o}})
+    top.push_back({2, mesh.quad(r)});
+  for (int l : mesh.take_new_lines()) // the outer edges, parallel to the pyramid's
+    gmsh::model::geo::mesh::setTransfiniteCurve(std::abs(l), g.cells + 1);
+  // ... and the pyramid's footprint: the bottoms of its lowest hexahedra
+  for (const auto& [X, Y, Z] : std::vector<std::array<Point, 3>>{
+           {O, P, Q}, {P, Q, O}, {Q, O, P}, {O, Q, S}, {Q, S, O}, {S, O, Q}})
+    top.push_back({2, mesh.quad({mesh.point(X), mesh.point(mix({X, Y})),
+                                 mesh.point(mix({X, Y, Z})), mesh.point(mix({X, Z}))})});
+  return top;
+}
 } // namespace
 
 TaggedMesh pyramid_mesh(MPI_Comm comm, const PyramidGeometry& g)
@@ -229,16 +280,25 @@ TaggedMesh pyramid_mesh(MPI_Comm comm, const PyramidGeometry& g)
   if (!(a < w))
     throw std::invalid_argument("the cell width W must exceed the pyramid width L");
   const bool eighth = g.domain == "eighth";
+  if (eighth && g.base != "diagonal")
+    throw std::invalid_argument("the eighth needs the base meshed along the diagonal");
   auto build = [&]()
   {
     gmsh::model::add("pyramid");
     HexBuilder mesh(g.L);
-    // The eighth 0 <= y <= x, and for the quarter its mirror image in x = y
-    gmsh::vectorpair top = build_eighth(mesh, g, false);
-    if (!eighth)
+    // The eighth 0 <= y <= x, and for the quarter on the diagonal base its mirror image in
+    // x = y; or the quarter with the corner block
+    gmsh::vectorpair top;
+    if (g.base == "corner")
+      top = build_quarter_with_corner_block(mesh, g);
+    else
     {
-      const gmsh::vectorpair mirrored = build_eighth(mesh, g, true);
-      top.insert(top.end(), mirrored.begin(), mirrored.end());
+      top = build_eighth(mesh, g, false);
+      if (!eighth)
+      {
+        const gmsh::vectorpair mirrored = build_eighth(mesh, g, true);
+        top.insert(top.end(), mirrored.begin(), mirrored.end());
+      }
     }
 
     // The base: the top face extruded down in layers growing away from it

@@ -21,9 +21,15 @@ struct PyramidGeometry
   /// "quarter": the quarter x, y >= 0 of the unit cell; "eighth": the wedge 0 <= y <= x of the
   /// quarter (the quarter is symmetric about the plane x = y as well); "half": the half x >= 0
   /// (the quarter and its mirror image in y = 0). The eighth's mesh is the quarter's on one
-  /// side of the diagonal, and the half's is the quarter's and its mirror image, so that the
-  /// three share their discrete solution: the symmetry conditions change nothing.
+  /// side of the diagonal (with base "diagonal"), and the half's is the quarter's and its
+  /// mirror image, so that they share their discrete solution: the symmetry conditions change
+  /// nothing.
   std::string domain = "quarter";
+  /// The top face of the base outside the pyramid: "corner", graded quadrilaterals along the
+  /// pyramid's foot and a block at the cell's corner (the quarter's and half's default), or
+  /// "diagonal", columns with the diagonal x = y as a mesh line (the eighth needs it; a quarter
+  /// on it is the eighth and its mirror image, for comparing the two).
+  std::string base = "corner";
 };
 
 /// The quarter x, y >= 0 (or the eighth 0 <= y <= x, or the half x >= 0,
@@ -37,12 +43,13 @@ struct PyramidGeometry
 /// midpoints, face centroids and the centroid), and below a stack of horizontal cuts at
 /// H/2, H/4, ... from the apex into triangular frusta of three hexahedra each, so that the
 /// cells shrink geometrically toward the apex and every cell keeps the shape of a corner of the
-/// tetrahedron. The top face of the base outside the pyramid is meshed in columns x = const
-/// (y = const on the other side of the diagonal) graded away from the pyramid, with the
-/// diagonal x = y as a mesh line, and the base is extruded from it in layers that grow away
-/// from the pyramid. So the whole mesh is conforming on the diagonal plane and symmetric about
-/// it: the eighth is built as the tetrahedron A O P Q and the base below the wedge, the quarter
-/// as that and its mirror image in x = y.
+/// tetrahedron. The top face of the base outside the pyramid is meshed in graded
+/// quadrilaterals (PyramidGeometry::base): with the diagonal base in columns x = const
+/// (y = const on the other side of the diagonal) with the diagonal x = y as a mesh line, so
+/// that the mesh is conforming on the diagonal plane and symmetric about it (the eighth is
+/// built as the tetrahedron A O P Q and the base below the wedge, the quarter as that and its
+/// mirror image in x = y). The base is extruded from it in layers that grow away from the
+/// pyramid.
 ///
 /// Physical groups: volume "body"; surfaces "bottom" (z = 0), "sym_x" (x = 0), "sym_y" (y = 0),
 /// "side_x" (x = W/2), "side_y" (y = W/2), "lateral", the lateral faces of the pyramid (the

@@ -240,6 +240,10 @@ ArcLength::ArcLength(MPI_Comm comm, NonlinearSystem& system,
       _newton(comm, with_corrector_defaults(prefix)), _prefix(prefix),
       _load(system.create_vector())
 {
+  // The corrector's options are read now: read at its first solve, they would replace the
+  // residual tolerance run() sets for that step (a restarted path's first step would then
+  // converge to a tighter tolerance than the uninterrupted path's)
+  _newton.bind(_bordered);
 }
 
 double ArcLength::tangent_direction(const PathState& state, double psi, Vec t)
@@ -290,9 +294,12 @@ double ArcLength::switch_branch(PathState& state)
 void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObserver>& observers,
                     const std::function<bool(const StepRecord&)>& stop)
 {
-  double ds = state.step_size > 0 ? state.step_size : real_option(_prefix, "ds", 0.05);
-  const double ds_max = real_option(_prefix, "ds_max", 10 * ds);
-  const double ds_min = real_option(_prefix, "ds_min", 1e-6 * ds);
+  // The bounds scale with the first step's size, also on a continued path (whose next step
+  // size has moved away from it)
+  const double ds_first = real_option(_prefix, "ds", 0.05);
+  const double ds_max = real_option(_prefix, "ds_max", 10 * ds_first);
+  const double ds_min = real_option(_prefix, "ds_min", 1e-6 * ds_first);
+  double ds = state.step_size > 0 ? state.step_size : ds_first;
   const double psi = real_option(_prefix, "psi", 0.0);
   const int target_it = int_option(_prefix, "target_it", 5);
   const double rtol = real_option(_prefix, "rtol", 1e-9);
@@ -301,9 +308,19 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
   GELX_PETSC(SNESGetTolerances(_newton.snes(), &atol, nullptr, nullptr, nullptr, nullptr));
   const bool root = dolfinx::MPI::rank(_comm) == 0;
 
+  if (state.step > 0)
+  {
+    StepRecord last;
+    last.step = state.step;
+    last.load = state.load;
+    last.arc_length = state.arc_length;
+    last.stability = state.stability;
+    if (stop(last))
+      return;
+  }
   OwnedVec x0(_system.create_vector()), t(_system.create_vector());
   OwnedVec bordered(_bordered.create_vector()), last_point(_bordered.create_vector());
-  for (int taken = 0; taken < max_steps; ++taken)
+  while (state.step < max_steps)
   {
     const auto start = std::chrono::steady_clock::now();
     GELX_PETSC(VecCopy(_system.unknowns(), x0.get()));

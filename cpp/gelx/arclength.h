@@ -117,8 +117,11 @@ public:
   ArcLength(MPI_Comm comm, NonlinearSystem& system, std::function<void(double)> set_load,
             const std::string& prefix = "arclength_");
 
-  /// Continue from the current (converged) state of the system at `state.load` until
-  /// `stop(record)` returns true or `max_steps` steps are taken. Throws ConvergenceError when
+  /// Continue from the current (converged) state of the system at `state.load` (each step
+  /// sets the load first) until `stop(record)` returns true or the path has `max_steps` steps
+  /// (state.step). A continued path (state.step > 0) first asks `stop` about its last point,
+  /// from the state (no Newton report, no limit-point or bifurcation flags), so that a run
+  /// restarted from its final checkpoint takes no extra step. Throws ConvergenceError when
   /// the arc length falls below ds_min; the state then holds the last point.
   void run(PathState& state, int max_steps, const std::vector<StepObserver>& observers,
            const std::function<bool(const StepRecord&)>& stop);

@@ -111,6 +111,27 @@ void RigidPlaneContact::commit()
   _active = _trial;
 }
 
+void RigidPlaneContact::save_history(Vec h) const
+{
+  _inner.save_history(h);
+  PetscScalar* values;
+  GELX_PETSC(VecGetArray(h, &values));
+  for (std::size_t i = 0; i < _row.size(); ++i)
+    values[_row[i]] = _active[i];
+  GELX_PETSC(VecRestoreArray(h, &values));
+}
+
+void RigidPlaneContact::load_history(Vec h)
+{
+  _inner.load_history(h);
+  const PetscScalar* values;
+  GELX_PETSC(VecGetArrayRead(h, &values));
+  for (std::size_t i = 0; i < _row.size(); ++i)
+    _active[i] = values[_row[i]] > 0.5;
+  GELX_PETSC(VecRestoreArrayRead(h, &values));
+  _trial = _active;
+}
+
 void RigidPlaneContact::residual(Vec r)
 {
   _inner.residual(r);

@@ -74,6 +74,10 @@ public:
   std::vector<PetscInt> prescribed_rows() const override;
   /// Accept the active set of the last residual evaluation.
   void commit() override;
+  /// The committed active set: 1 in the normal row of a node in contact (and the wrapped
+  /// system's history)
+  void save_history(Vec h) const override;
+  void load_history(Vec h) override;
   NonlinearProblem& problem() override { return _inner.problem(); }
   const std::vector<PetscInt>& unknown_of_problem_dof() const override
   {

@@ -84,6 +84,8 @@ FieldSeries::FieldSeries(MPI_Comm comm, const fs::path& folder, const dolfinx::m
   if (found < keep)
     throw std::runtime_error("the fields of " + folder.string() + " hold " + std::to_string(found)
                              + " steps, not the " + std::to_string(keep) + " to continue from");
+  // Every rank numbers the files by the steps (rank 0 alone writes the index, from its lines)
+  _grids.resize(keep);
   // The mesh of the steps this run writes (a restart on another rank count numbers the nodes
   // differently, so the steps before it keep their own mesh file)
   _mesh = mesh_xml(mesh);

@@ -49,6 +49,10 @@ void LoadStepper::run(PathState& state, const std::vector<StepObserver>& observe
   OwnedVec saved(_system.create_vector()); // the last completed step, restored after a failure
   double dt = state.step_size > 0 ? state.step_size : _options.dt;
   int cutbacks = 0;
+  // A continued path (a restart) starts with the loads of its last point, which a new run's
+  // scene has not applied
+  if (state.step > 0)
+    _apply_load(state.load);
   auto start = std::chrono::steady_clock::now();
   // The end point is reached exactly, whatever the step sizes on the way.
   constexpr double t_end = 1.0, t_eps = 1e-12;

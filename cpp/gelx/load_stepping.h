@@ -34,8 +34,8 @@ public:
   LoadStepper(NonlinearSystem& system, NewtonSolver& newton, LoadSteppingOptions options,
               std::function<void(double)> apply_load);
 
-  /// Run from `state` (a new path: PathState{}) to t = 1, calling every observer after every
-  /// completed step. Throws ConvergenceError when a step fails with no cut-back left or when
+  /// Run from `state` (a new path: PathState{}; a continued one: its loads are applied first)
+  /// to t = 1, calling every observer after every completed step. Throws ConvergenceError when a step fails with no cut-back left or when
   /// cutting would take the step below dt_min; the state then holds the last completed step.
   void run(PathState& state, const std::vector<StepObserver>& observers);
   /// Run a new path with one observer, or none.

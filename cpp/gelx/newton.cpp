@@ -279,12 +279,17 @@ bool NewtonSolver::predict(NonlinearSystem& system)
   return true;
 }
 
-void NewtonSolver::begin(NonlinearSystem& system)
+void NewtonSolver::bind(NonlinearSystem& system)
 {
   if (!_progress.system)
     set_up(system);
   else if (_progress.system != &system)
     throw std::logic_error("NewtonSolver '" + _prefix + "' serves one system");
+}
+
+void NewtonSolver::begin(NonlinearSystem& system)
+{
+  bind(system);
   _progress.report = NewtonReport{};
   _progress.converged = false;
   // SNES iterates on a vector of its own: its line searches evaluate trial states, which

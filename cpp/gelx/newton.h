@@ -76,6 +76,10 @@ public:
   /// continuation's corrector): no predictor; the increment test measures from `last_point`.
   NewtonReport correct(NonlinearSystem& system, Vec last_point);
 
+  /// Bind the solver to `system` and read its options now rather than at the first solve, so
+  /// that tolerances a driver sets on snes() hold from the first solve on.
+  void bind(NonlinearSystem& system);
+
   SNES snes() const { return _snes; }
   const std::string& prefix() const { return _prefix; }
 
@@ -100,7 +104,7 @@ private:
   bool predict(NonlinearSystem& system);
   /// SNESSolve from _x and the report.
   NewtonReport run_snes(NonlinearSystem& system);
-  /// Bind to `system` on first use and reset the report.
+  /// bind(system) and reset the report.
   void begin(NonlinearSystem& system);
   MPI_Comm _comm;
   std::string _prefix;

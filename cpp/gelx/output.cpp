@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <numeric>
+#include <regex>
 #include <xtensor/xtensor.hpp>
 #include <gmsh.h>
 #include <petscversion.h>
@@ -141,9 +142,11 @@ std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>> FieldSet::upd
 
 namespace
 {
-/// Create `folder` for a new run's results and clear what an earlier run left there, so that
-/// it cannot pass for this run's; returns `folder`. Collective.
-const std::filesystem::path& prepare_folder(MPI_Comm comm, const std::filesystem::path& folder)
+/// Create `folder` for a run's results and clear what an earlier run left there, so that it
+/// cannot pass for this run's (steps.csv too, unless this run continues it); returns
+/// `folder`. Collective.
+const std::filesystem::path& prepare_folder(MPI_Comm comm, const std::filesystem::path& folder,
+                                            bool continued)
 {
   int ok = 1;
   if (dolfinx::MPI::rank(comm) == 0)
@@ -151,8 +154,10 @@ const std::filesystem::path& prepare_folder(MPI_Comm comm, const std::filesystem
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
     ok = !ec;
-    for (const char* old : {"steps.csv", "summary.json", "fields.h5"})
+    for (const char* old : {"summary.json", "fields.h5"})
       std::filesystem::remove(folder / old, ec);
+    if (!continued)
+      std::filesystem::remove(folder / "steps.csv", ec);
   }
   MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
   if (!ok)
@@ -232,10 +237,61 @@ nlohmann::json software_versions()
 } // namespace
 
 ResultsWriter::ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
-                             std::shared_ptr<const dolfinx::mesh::Mesh> mesh)
-    : _comm(comm), _folder(folder), _fields(comm, prepare_folder(comm, folder), *mesh),
+                             std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
+                             std::optional<ResultsProgress> keep)
+    : _comm(comm), _folder(folder),
+      _fields(comm, prepare_folder(comm, folder, keep.has_value()), *mesh,
+              keep ? keep->field_steps : 0),
       _root(dolfinx::MPI::rank(comm) == 0)
 {
+  if (keep)
+    continue_steps(keep->rows);
+}
+
+void ResultsWriter::continue_steps(int rows)
+{
+  namespace fs = std::filesystem;
+  int found = rows;
+  if (_root)
+  {
+    std::ifstream in(_folder / "steps.csv");
+    std::string header, line;
+    std::getline(in, header);
+    for (found = 0; found < rows && std::getline(in, line); ++found)
+      _csv += line + "\n";
+    if (rows > 0)
+    {
+      std::istringstream names(header);
+      for (std::string name; std::getline(names, name, ',');)
+        _columns.push_back(name);
+      _csv = header + "\n" + _csv;
+      replace_file(_folder / "steps.csv", [&](std::ostream& file) { file << _csv; });
+    }
+    else
+      fs::remove(_folder / "steps.csv"); // the columns come from the first row again
+    // Per-step files of the steps beyond (fields/ is the field series', checkpoint/ the
+    // checkpoints')
+    static const std::regex per_step(R"(step_(\d+)\..+)");
+    std::vector<fs::path> beyond;
+    for (auto it = fs::recursive_directory_iterator(_folder);
+         it != fs::recursive_directory_iterator(); ++it)
+    {
+      std::smatch m;
+      const std::string name = it->path().filename().string();
+      if (it->is_directory() && (name == "fields" || name == "checkpoint"))
+        it.disable_recursion_pending();
+      else if (it->is_regular_file() && std::regex_match(name, m, per_step)
+               && std::stoi(m[1]) > rows)
+        beyond.push_back(it->path());
+    }
+    for (const auto& file : beyond)
+      fs::remove(file);
+  }
+  MPI_Bcast(&found, 1, MPI_INT, 0, _comm);
+  if (found < rows)
+    throw std::runtime_error("steps.csv of " + _folder.string() + " holds " + std::to_string(found)
+                             + " rows, not the " + std::to_string(rows) + " to continue from");
+  _rows = rows;
 }
 
 void ResultsWriter::write_fields(
@@ -247,6 +303,7 @@ void ResultsWriter::write_fields(
 
 void ResultsWriter::append_step(const nlohmann::json& row)
 {
+  ++_rows;
   if (!_root)
     return;
   std::ostringstream out;

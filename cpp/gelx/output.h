@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -90,13 +91,29 @@ std::vector<Triangle> deformed_surface(const dolfinx::fem::Function<double>& u_p
                                        const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags,
                                        int tag);
 
+/// How far a results folder has got: what a checkpoint records and a restart keeps.
+struct ResultsProgress
+{
+  int field_steps = 0; ///< steps of fields.xdmf
+  int rows = 0;        ///< rows of steps.csv
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ResultsProgress, field_steps, rows)
+
 /// Writes one run's results into one folder.
+///
+/// Per-step files (write_stl) are named `.../step_<k>.<ext>`, k the row of steps.csv they
+/// belong to, so that a restart can remove those of the steps it takes again.
 class ResultsWriter
 {
 public:
-  /// Creates `folder` and starts its field series (fields.xdmf, fields/) on `mesh`.
+  /// Creates `folder` and starts its field series (fields.xdmf, fields/) on `mesh`; or, given
+  /// `keep` (a restart), continues the results there after the first keep->field_steps steps
+  /// of fields.xdmf and keep->rows rows of steps.csv, removing what was written beyond them
+  /// (per-step files step_<k> with k > keep->rows included). Throws std::runtime_error when
+  /// the folder holds less. Collective.
   ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
-                std::shared_ptr<const dolfinx::mesh::Mesh> mesh);
+                std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
+                std::optional<ResultsProgress> keep = std::nullopt);
 
   /// Append the fields at time (load factor) t to fields.xdmf as one step.
   void write_fields(double t,
@@ -119,13 +136,21 @@ public:
                      const Parameters& parameters, nlohmann::json quantities);
 
   const std::filesystem::path& folder() const { return _folder; }
+  /// Steps of fields.xdmf and rows of steps.csv written so far (those kept on a restart
+  /// included).
+  ResultsProgress progress() const { return {_fields.size(), _rows}; }
 
 private:
+  /// Keep the header and the first `rows` rows of steps.csv (none: no file) and remove the
+  /// per-step files beyond them (rank 0). Throws when steps.csv has fewer rows. Collective.
+  void continue_steps(int rows);
+
   MPI_Comm _comm;
   std::filesystem::path _folder;
   FieldSeries _fields;
   std::vector<std::string> _columns;
   std::string _csv; ///< steps.csv as written so far
+  int _rows = 0;    ///< its rows
   bool _root;
 };
 

@@ -233,7 +233,10 @@ std::vector<std::string> Parameters::parse(int argc, char* argv[], bool* help_re
     if (name == "scene")
       read_file(value);
     else
+    {
       set(name, value);
+      _given.insert(name);
+    }
   }
   return rest;
 }
@@ -253,6 +256,7 @@ void Parameters::read_file(const std::string& path)
     if (eq == std::string::npos)
       throw InputError(path + ":" + std::to_string(number) + ": expected 'name = value'");
     set(trim(line.substr(0, eq)), line.substr(eq + 1));
+    _given.insert(trim(line.substr(0, eq)));
   }
 }
 
@@ -284,9 +288,12 @@ std::string Parameters::table(bool with_help) const
       sections.push_back(s);
     by_section[s].push_back(name);
   }
+  // An empty text shows as "" (a column of its own for readers of --help)
+  auto shown = [](const Value& v) -> std::string
+  { return v.index() == 3 && std::get<std::string>(v).empty() ? "\"\"" : to_text(v); };
   std::size_t value_width = 14;
   for (const auto& [name, e] : _entries)
-    value_width = std::max(value_width, to_text(e.value).size() + 2);
+    value_width = std::max(value_width, shown(e.value).size() + 2);
   std::ostringstream out;
   for (const auto& s : sections)
   {
@@ -294,7 +301,7 @@ std::string Parameters::table(bool with_help) const
     for (const auto& name : by_section[s])
     {
       const Entry& e = _entries.at(name);
-      out << "  --" << std::left << std::setw(22) << name << std::setw(value_width) << to_text(e.value);
+      out << "  --" << std::left << std::setw(22) << name << std::setw(value_width) << shown(e.value);
       if (with_help)
         out << std::setw(9) << kind_name(e.value) << e.help;
       out << "\n";

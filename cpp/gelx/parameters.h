@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
@@ -75,6 +76,8 @@ public:
   /// real, integer, flag or text, and help text) for --help.
   std::string table(bool with_help) const;
   nlohmann::json to_json() const;
+  /// The names of the parameters that the command line or a scene file set (parse()).
+  const std::set<std::string>& given() const { return _given; }
 
   /// Common validity checks.
   static std::string positive(double v);
@@ -98,6 +101,7 @@ private:
                const std::string& help, std::function<std::string(const Value&)> valid);
   std::map<std::string, Entry> _entries;
   std::vector<std::string> _order;
+  std::set<std::string> _given;
 };
 
 } // namespace gelx

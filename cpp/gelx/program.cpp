@@ -1,4 +1,5 @@
 #include "program.h"
+#include "checkpoint.h"
 #include "path.h"
 #include "petsc_utils.h"
 
@@ -48,19 +49,109 @@ std::string unused_options()
   PetscOptionsLeftRestore(nullptr, &n, &names, &values);
   return list;
 }
+
+/// The parameters that belong to the run, not to the scene: a restart may set them.
+bool is_run_parameter(const std::string& name)
+{
+  return name == "output" || name == "checkpoint_every" || name == "restart";
+}
+
+/// With --restart DIR: DIR's newest checkpoint, whose scene parameters `parameters` takes
+/// over, with --output DIR; an empty path for a new run. Throws InputError when DIR has no
+/// checkpoint or the command line sets a scene parameter to another value than the
+/// checkpoint's.
+std::filesystem::path restart_checkpoint(Parameters& parameters)
+{
+  const std::string folder = parameters.text("restart");
+  if (folder.empty())
+    return {};
+  const std::filesystem::path checkpoint
+      = Checkpoints::newest(std::filesystem::path(folder) / "checkpoint");
+  if (checkpoint.empty())
+    throw InputError("--restart " + folder + ": no complete checkpoint in " + folder
+                     + "/checkpoint");
+  const nlohmann::json saved = Checkpoints::read_record(checkpoint).at("run").at("parameters");
+  const nlohmann::json given = parameters.to_json();
+  for (const std::string& name : parameters.given())
+  {
+    if (name == "output" && given.at(name) != folder)
+      throw InputError("--restart " + folder + " continues the run in " + folder
+                       + ": --output may not name another folder");
+    const nlohmann::json there = saved.value(name, nlohmann::json());
+    if (!is_run_parameter(name) && given.at(name) != there)
+      throw InputError("--restart continues a run with the parameters of its checkpoint: --"
+                       + name + " may not be changed (" + there.dump() + " there)");
+  }
+  for (const auto& [name, value] : saved.items())
+    if (!is_run_parameter(name))
+      parameters.set(name, value.is_string() ? value.get<std::string>() : value.dump());
+  parameters.set("output", folder);
+  return checkpoint;
+}
 } // namespace
 
-Run::Run(MPI_Comm comm, std::string scene, const Parameters& parameters)
+Run::Run(MPI_Comm comm, std::string scene, const Parameters& parameters,
+         std::filesystem::path checkpoint)
     : _comm(comm), _scene(std::move(scene)), _parameters(parameters),
-      _start(std::chrono::steady_clock::now())
+      _start(std::chrono::steady_clock::now()), _restart_from(std::move(checkpoint)),
+      _checkpoints(std::make_unique<Checkpoints>(
+          comm, std::filesystem::path(parameters.text("output")) / "checkpoint"))
 {
+  if (!_restart_from.empty())
+    _restart_record = Checkpoints::read_record(_restart_from);
 }
+
+Run::~Run() = default;
 
 ResultsWriter& Run::results(std::shared_ptr<const dolfinx::mesh::Mesh> mesh)
 {
-  if (!_results)
-    _results = std::make_unique<ResultsWriter>(_comm, _parameters.text("output"), mesh);
+  if (_results)
+    return *_results;
+  std::optional<ResultsProgress> keep;
+  if (_restart_from.empty())
+    forget_old_checkpoints();
+  else
+    keep = _restart_record.at("run").value("results", ResultsProgress{});
+  _results = std::make_unique<ResultsWriter>(_comm, _parameters.text("output"), mesh, keep);
   return *_results;
+}
+
+PathState Run::start_path(NonlinearSystem& system)
+{
+  if (_path_system)
+    throw std::logic_error("Run::start_path: a run checkpoints one path");
+  _path_system = &system;
+  if (_restart_from.empty())
+  {
+    forget_old_checkpoints();
+    return PathState{};
+  }
+  PathState state = Checkpoints::read(_comm, _restart_from, system);
+  summary.update(_restart_record.at("run").at("summary"));
+  return state;
+}
+
+StepObserver Run::checkpoints()
+{
+  return [this](const StepRecord& step, PathState& state)
+  {
+    const int every = _parameters.integer("checkpoint_every");
+    if (every == 0 || step.step % every != 0)
+      return;
+    if (!_path_system)
+      throw std::logic_error("Run::checkpoints: the path was not started with start_path");
+    nlohmann::json record = {{"parameters", _parameters.to_json()}, {"summary", summary}};
+    if (_results)
+      record["results"] = _results->progress();
+    _checkpoints->write(*_path_system, state, record);
+  };
+}
+
+void Run::forget_old_checkpoints()
+{
+  if (!_old_checkpoints_forgotten)
+    _checkpoints->clear();
+  _old_checkpoints_forgotten = true;
 }
 
 double Run::elapsed() const
@@ -75,6 +166,9 @@ void Run::finish(const std::string& status)
   nlohmann::json record = summary;
   record["wall_time"] = elapsed();
   record["petsc_options"] = petsc_options();
+  if (!_restart_from.empty())
+    record["restarted_from"] = {{"step", _restart_record.at("path").at("step")},
+                                {"ranks", _restart_record.at("ranks")}};
   _results->write_summary(_scene, status, _parameters, record);
 }
 
@@ -83,12 +177,20 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
 {
   const std::string scene = name.rfind("gelx-", 0) == 0 ? name.substr(5) : name;
   parameters.add("output", "output", ("results/" + scene).c_str(), "folder for the results");
+  parameters.add("output", "checkpoint_every", 1,
+                 "write a checkpoint of the path every N steps (0: none)",
+                 [](int v) { return v >= 0 ? "" : "must not be negative"; });
+  parameters.add("output", "restart", "",
+                 "continue the run in this results folder from its newest checkpoint, with its "
+                 "parameters");
   std::vector<std::string> rest;
   bool help = false;
   std::string input_error;
+  std::filesystem::path checkpoint;
   try
   {
     rest = parameters.parse(argc, argv, &help);
+    checkpoint = restart_checkpoint(parameters);
   }
   catch (const InputError& e)
   {
@@ -129,7 +231,7 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
   {
     if (rank == 0)
       std::cout << name << " parameters:\n" << parameters.table(false) << std::flush;
-    Run run(PETSC_COMM_WORLD, scene, parameters);
+    Run run(PETSC_COMM_WORLD, scene, parameters, checkpoint);
     try
     {
       body(run);

@@ -5,7 +5,9 @@
 
 #include "output.h"
 #include "parameters.h"
+#include "path.h"
 #include <chrono>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <mpi.h>
@@ -14,6 +16,7 @@
 
 namespace gelx
 {
+class Checkpoints;
 
 /// The record of one run of a scene: its results folder, its clock, and the quantities of
 /// interest that go into summary.json. run_program writes summary.json when the run ends,
@@ -21,16 +24,38 @@ namespace gelx
 /// option in effect (read back from the options database), the library versions, the MPI
 /// ranks and the wall time; the scene keeps `summary` current as it goes, so that a failed
 /// run's summary holds what it reached.
+///
+/// Checkpoint and restart: the scene starts its path with start_path(system) and gives the
+/// path the observer checkpoints(), last; every --checkpoint_every steps it writes a
+/// checkpoint (checkpoint.h) into OUTPUT/checkpoint, with the parameters, the results
+/// written so far and `summary`. `--restart DIR` runs the scene again with the parameters of
+/// DIR's newest checkpoint: results(mesh) continues DIR's outputs after the checkpoint's
+/// step, start_path(system) restores the system and returns the checkpoint's path state, and
+/// the driver continues the path from there.
 class Run
 {
 public:
-  Run(MPI_Comm comm, std::string scene, const Parameters& parameters);
+  /// `checkpoint`: the checkpoint a restarted run (--restart) continues from; empty for a new
+  /// run.
+  Run(MPI_Comm comm, std::string scene, const Parameters& parameters,
+      std::filesystem::path checkpoint = {});
+  ~Run();
 
   MPI_Comm comm() const { return _comm; }
-  /// The writer of the results folder (--output) for `mesh`, made at the first call.
+  /// The writer of the results folder (--output) for `mesh`, made at the first call; on a
+  /// restart it continues the folder's outputs after the checkpoint's.
   ResultsWriter& results(std::shared_ptr<const dolfinx::mesh::Mesh> mesh);
   /// Seconds since the run started.
   double elapsed() const;
+
+  /// Where the scene's path starts: PathState{} for a new run; on a restart, the checkpoint's
+  /// state, with `system` (the system the path's driver is given, at its initial state) set
+  /// to the checkpoint's unknowns and history and `summary` to its quantities. checkpoints()
+  /// saves this system. One path per run. Collective.
+  PathState start_path(NonlinearSystem& system);
+  /// The observer that writes a checkpoint of the path every --checkpoint_every steps. Put it
+  /// last among the path's observers, so that the checkpoint covers their output of the step.
+  StepObserver checkpoints();
 
   /// The scene's quantities of interest.
   nlohmann::json summary = nlohmann::json::object();
@@ -40,18 +65,28 @@ public:
   void finish(const std::string& status);
 
 private:
+  /// A new run removes the checkpoints of an earlier run in its folder (once)
+  void forget_old_checkpoints();
+
   MPI_Comm _comm;
   std::string _scene;
   const Parameters& _parameters;
   std::chrono::steady_clock::time_point _start;
   std::unique_ptr<ResultsWriter> _results;
+  std::filesystem::path _restart_from; ///< the checkpoint continued, or empty
+  nlohmann::json _restart_record;      ///< its state.json
+  std::unique_ptr<Checkpoints> _checkpoints;
+  NonlinearSystem* _path_system = nullptr; ///< the system of start_path()
+  bool _old_checkpoints_forgotten = false;
 };
 
 /// Run a gelx program.
 ///
-/// Reads the scene parameters (plus `--output DIR`, declared here) from the command line,
-/// starts PETSc and SLEPc with what remains (the options database), echoes the parameters, and
-/// runs `body`, then writes the run record. A PETSc option that no solver object read ends
+/// Reads the scene parameters (plus `--output DIR`, `--checkpoint_every N` and `--restart DIR`,
+/// declared here) from the command line; with --restart, the scene parameters are those of the
+/// checkpoint (the command line may not change them; PETSc options it may) and the output
+/// folder is DIR (see Run). Starts PETSc and SLEPc with what remains (the options database),
+/// echoes the parameters, and runs `body`, then writes the run record. A PETSc option that no solver object read ends
 /// the run like an unknown scene parameter. Every error ends as one line `NAME: error: ...` on
 /// stderr and exit code 1; `--help` prints the parameter table and exits 0. Input errors are
 /// found on every rank before any collective call, so no rank is left waiting.

@@ -64,6 +64,14 @@ public:
   /// so that a rejected trial leaves no trace.
   virtual void commit() {}
 
+  /// History beyond the unknowns that the next step depends on (the contact's committed
+  /// active set), as one value per unknown: save_history adds this system's entries to h (a
+  /// zeroed vector of create_vector()'s layout), load_history reads them back. A checkpoint
+  /// stores h beside the unknowns, so that a restarted path continues exactly where it was.
+  /// Decorators with their inner system's layout pass both calls inward.
+  virtual void save_history(Vec /*h*/) const {}
+  virtual void load_history(Vec /*h*/) {}
+
   /// Set up what a solver of this system needs beyond residual and tangent (a shell
   /// preconditioner for a bordered tangent); NewtonSolver calls it before reading its options.
   virtual void configure(SNES) const {}

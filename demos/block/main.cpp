@@ -119,7 +119,7 @@ int main(int argc, char* argv[])
 
     // 6. Follow the load path; each completed step updates the quantities of interest
     gelx::NewtonSolver newton(run.comm());
-    gelx::PathState path;
+    gelx::PathState path = run.start_path(problem);
     gelx::LoadStepper(problem, newton, stepping, [&](double t) { bcs.update(t); })
         .run(path,
              {[&](const gelx::StepRecord& s, gelx::PathState& state)
@@ -147,6 +147,7 @@ int main(int argc, char* argv[])
                 run.summary.update({{"steps", s.step},
                                     {"newton_iterations", state.scene["newton_iterations"]},
                                     {"cutbacks", state.cutbacks}});
-              }});
+              },
+              run.checkpoints()});
   });
 }

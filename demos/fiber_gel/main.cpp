@@ -90,7 +90,7 @@ int main(int argc, char* argv[])
     fields.add("sigma", cell.stress()); // sigma_vm: Fig. 4.8
     fields.add("displacement", cell.displacement());
     gelx::NewtonSolver newton(run.comm());
-    gelx::PathState path;
+    gelx::PathState path = run.start_path(cell.system());
     gelx::LoadStepper(cell.system(), newton, stepping,
                       [&](double s) { cell.set_temperature(gel.T_i + s * (gel.T_f - gel.T_i)); })
         .run(path,
@@ -122,6 +122,7 @@ int main(int argc, char* argv[])
                                     {"min_J_minus_phi0", cell.admissibility_margin()},
                                     {"load_steps", step.step},
                                     {"newton_iterations", state.scene["newton_iterations"]}});
-              }});
+              },
+              run.checkpoints()});
   });
 }

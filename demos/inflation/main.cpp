@@ -103,7 +103,7 @@ int main(int argc, char* argv[])
     fields.add("displacement", shell.displacement());
     gelx::ArcLength continuation(run.comm(), shell.system(),
                                  [&](double l) { shell.set_load_factor(l); });
-    gelx::PathState path;
+    gelx::PathState path = run.start_path(shell.system());
     continuation.run(
         path, c.max_steps,
         {[&](const gelx::StepRecord& pt, gelx::PathState& state)
@@ -135,7 +135,8 @@ int main(int argc, char* argv[])
                 {"time_per_step", curve.time / pt.step},
                 {"time_per_corrector_iteration",
                  curve.time / std::max(curve.corrector_iterations, 1)}});
-         }},
+         },
+         run.checkpoints()},
         [&](const gelx::StepRecord& pt)
         {
           const auto curve = path.scene.value("curve", Curve{});

@@ -79,16 +79,17 @@ struct Loading
   double d_over_H(double s) const { return (unload ? 1 - std::abs(1 - 2 * s) : s) * d_max; }
 };
 
-/// Press the pyramid as `loading` says, in the steps of `stepping`: after each completed step
-/// the width curve in the path's state is extended (loading steps) and `record(step, d/H,
-/// measures)` is called. Returns the curve; throws ConvergenceError when a step fails.
+/// Press the pyramid as `loading` says, in the steps of `stepping`, from `path` (a new one, or
+/// a restarted run's): after each completed step the width curve in the path's state is
+/// extended (loading steps), `record(step, d/H, measures)` is called, then `checkpoints`.
+/// Returns the curve; throws ConvergenceError when a step fails.
 WidthCurve press(gelx::scenes::PressedPyramid& pyramid, const Loading& loading,
                  const gelx::LoadSteppingOptions& stepping, double L,
                  const std::function<void(const gelx::StepRecord&, double,
-                                          const gelx::scenes::ContactMeasures&)>& record)
+                                          const gelx::scenes::ContactMeasures&)>& record,
+                 gelx::PathState path = {}, const gelx::StepObserver& checkpoints = nullptr)
 {
   gelx::NewtonSolver newton(pyramid.mesh().mesh->comm());
-  gelx::PathState path;
   gelx::LoadStepper(pyramid.system(), newton, stepping,
                     [&](double s) { pyramid.set_indentation(loading.d_over_H(s) * pyramid.height()); })
       .run(path,
@@ -105,6 +106,8 @@ WidthCurve press(gelx::scenes::PressedPyramid& pyramid, const Loading& loading,
               }
               state.scene["width_curve"] = curve;
               record(step, d, measures);
+              if (checkpoints)
+                checkpoints(step, state);
             }});
   return path.scene.value("width_curve", WidthCurve{});
 }
@@ -217,7 +220,8 @@ int main(int argc, char* argv[])
                               {"final_contact_width_over_L", c.width / g.L},
                               {"area_ratio", c.width > 0 ? area_ratio : NAN},
                               {"max_penetration", c.penetration}});
-        });
+        },
+        run.start_path(pyramid.system()), run.checkpoints());
     const Fit by_d = curve.by_d(), by_f = curve.by_sqrt_force();
     run.summary.update({{"slope_lc_vs_d", by_d.slope},
                         {"intercept_lc_vs_d", by_d.intercept},
@@ -227,7 +231,8 @@ int main(int argc, char* argv[])
                         {"wall_time", run.elapsed()}});
 
     // 4. The patch at the last step (x, y, nodal contact force, in contact), for the pressure
-    //    map
+    //    map; measured here, as a run restarted from its last checkpoint took no step
+    pyramid.measure();
     const auto patch = pyramid.patch(); // collective; the nodes are on rank 0
     if (dolfinx::MPI::rank(run.comm()) == 0)
     {

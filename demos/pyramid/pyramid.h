@@ -69,8 +69,9 @@ public:
 
   /// The candidate nodes of the whole pyramid (current x, y, contact force, 1 in contact or
   /// 0) within twice the patch's reach of the axis, on rank 0 (others: empty): a pressure map
-  /// that shows the patch's edges between contact and free nodes. Each node appears once, with
-  /// its force in the whole pyramid (on a mirror plane: the forces of the parts that share it).
+  /// that shows the patch's edges between contact and free nodes, at the last measure(). Each
+  /// node appears once, with its force in the whole pyramid (on a mirror plane: the forces of
+  /// the parts that share it).
   /// Collective.
   std::vector<std::array<double, 4>> patch() const;
 

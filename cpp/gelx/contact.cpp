@@ -1,4 +1,5 @@
 #include "contact.h"
+#include "parameters.h"
 #include "petsc_utils.h"
 
 #include <algorithm>
@@ -10,11 +11,21 @@
 namespace gelx
 {
 
+ContactMethod contact_method_option(const std::string& prefix)
+{
+  const std::string method = string_option(prefix, "method", "active_set");
+  if (method == "active_set")
+    return ContactMethod::active_set;
+  if (method == "vi")
+    return ContactMethod::vi;
+  throw InputError("-" + prefix + "method must be active_set or vi, not '" + method + "'");
+}
+
 RigidPlaneContact::RigidPlaneContact(NonlinearSystem& inner,
                                      std::shared_ptr<const dolfinx::fem::FunctionSpace> displacement,
                                      const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags,
-                                     int tag, int axis, int side)
-    : _inner(inner), _axis(axis), _side(side)
+                                     int tag, int axis, int side, ContactMethod method)
+    : _inner(inner), _axis(axis), _side(side), _method(method)
 {
   const auto& W = *inner.problem().u()->function_space();
   const std::int32_t num_owned = W.dofmap()->index_map->size_local() * W.dofmap()->index_map_bs();
@@ -84,6 +95,55 @@ RigidPlaneContact::RigidPlaneContact(NonlinearSystem& inner,
   GELX_PETSC(VecRestoreArrayRead(diagonal, &d));
   VecDestroy(&diagonal);
   MatDestroy(&A);
+
+  if (_method == ContactMethod::vi)
+  {
+    _lower = inner.create_vector();
+    _upper = inner.create_vector();
+    GELX_PETSC(VecSet(_lower, PETSC_NINFINITY));
+    GELX_PETSC(VecSet(_upper, PETSC_INFINITY));
+    set_position(_position);
+  }
+}
+
+RigidPlaneContact::~RigidPlaneContact()
+{
+  VecDestroy(&_lower);
+  VecDestroy(&_upper);
+}
+
+void RigidPlaneContact::set_position(double position)
+{
+  _position = position;
+  if (_method != ContactMethod::vi)
+    return;
+  // The body on side -1 stays below the plane: an upper bound; on side +1 a lower one. Only
+  // owned rows: every candidate here is owned
+  PetscScalar* bound;
+  Vec bounds = _side < 0 ? _upper : _lower;
+  GELX_PETSC(VecGetArray(bounds, &bound));
+  for (std::size_t i = 0; i < _row.size(); ++i)
+    bound[_row[i]] = position - _X[i][_axis];
+  GELX_PETSC(VecRestoreArray(bounds, &bound));
+}
+
+void RigidPlaneContact::configure(SNES snes) const
+{
+  _inner.configure(snes);
+  if (_method != ContactMethod::vi)
+    return;
+  // The type is set here rather than as a default option, which would outlive this system
+  // and turn every later solver of that prefix into a VI solver
+  const char* prefix;
+  GELX_PETSC(SNESGetOptionsPrefix(snes, &prefix));
+  const std::string p = prefix ? prefix : "";
+  const std::string type = string_option(p, "snes_type", SNESVINEWTONRSLS);
+  if (type != SNESVINEWTONRSLS && type != SNESVINEWTONSSLS)
+    throw InputError("contact method vi needs a bound-constrained SNES: -" + p
+                     + "snes_type vinewtonrsls or vinewtonssls, not " + type);
+  GELX_PETSC(SNESSetType(snes, type.c_str()));
+  GELX_PETSC(SNESVISetVariableBounds(snes, _lower, _upper));
+  _bounds_in_use = true;
 }
 
 void RigidPlaneContact::trial_active_set(Vec inner_residual)
@@ -95,6 +155,12 @@ void RigidPlaneContact::trial_active_set(Vec inner_residual)
   {
     _lambda[i] = _side * R[_row[i]];
     const double gap = _side * (_X[i][_axis] + u[_dof[i]] - _position);
+    if (!rows_replaced())
+    {
+      // SNES's active set: at the bound, pushed into it
+      _trial[i] = gap <= _release_gap && _lambda[i] > 0;
+      continue;
+    }
     // A free node enters when it penetrates, a node in contact leaves when it is pulled
     // (a force below -c_i _release_gap, beyond round-off). The primal-dual test
     // c gap < lambda also for free nodes reads their out-of-balance force during the
@@ -134,8 +200,13 @@ void RigidPlaneContact::load_history(Vec h)
 
 void RigidPlaneContact::residual(Vec r)
 {
+  if (_method == ContactMethod::vi && !_bounds_in_use)
+    throw std::logic_error("contact: with -contact_method vi the contact system must be the "
+                           "one the Newton solver solves (its configure() sets the bounds)");
   _inner.residual(r);
   trial_active_set(r);
+  if (!rows_replaced())
+    return;
   const auto& u = _inner.problem().u()->x()->array();
   PetscScalar* values;
   GELX_PETSC(VecGetArray(r, &values));
@@ -148,6 +219,8 @@ void RigidPlaneContact::residual(Vec r)
 void RigidPlaneContact::tangent(Mat A)
 {
   _inner.tangent(A);
+  if (!rows_replaced())
+    return;
   std::vector<PetscInt> rows;
   for (std::size_t i = 0; i < _dof.size(); ++i)
     if (_trial[i])
@@ -160,7 +233,7 @@ void RigidPlaneContact::tangent(Mat A)
 std::vector<PetscInt> RigidPlaneContact::prescribed_rows() const
 {
   std::vector<PetscInt> rows = _inner.prescribed_rows();
-  for (std::size_t i = 0; i < _dof.size(); ++i)
+  for (std::size_t i = 0; rows_replaced() && i < _dof.size(); ++i)
     if (_trial[i])
       rows.push_back(_row[i]);
   std::sort(rows.begin(), rows.end());

@@ -9,6 +9,7 @@
 #include <dolfinx/mesh/MeshTags.h>
 #include <array>
 #include <memory>
+#include <string>
 #include <ufcx.h>
 #include <vector>
 
@@ -22,6 +23,22 @@ struct ContactState
   std::int64_t active = 0;     ///< nodes in contact (all ranks)
   double max_penetration = 0;  ///< largest distance of a candidate node behind the plane
 };
+
+/// How RigidPlaneContact solves the complementarity conditions of its nodes.
+enum class ContactMethod
+{
+  /// gelx's own active set: the rows of the nodes in contact are replaced by u_i = u_i*, so
+  /// any Newton solver needs nothing else
+  active_set,
+  /// PETSc's bound-constrained Newton (SNESVINEWTONRSLS): the plane is a bound on each
+  /// candidate's normal displacement, the residual is the wrapped system's, and SNES keeps the
+  /// active set (the rows at a bound that the residual pushes into it)
+  vi
+};
+
+/// The method chosen by `-<prefix>method active_set|vi` (default active_set, see
+/// demos/pyramid/README.md for the comparison). Throws InputError for other values.
+ContactMethod contact_method_option(const std::string& prefix = "contact_");
 
 /// A system with the unilateral constraint of a rigid plane x_k = position (axis k; the body on
 /// the side `side` = +1 or -1 of it), imposed exactly by an active set on the nodes of a
@@ -46,6 +63,15 @@ struct ContactState
 /// and the set committed at the last accepted iterate (commit()); a trial state of a line search
 /// changes nothing. A converged state has no penetration at any node and no tension in the
 /// patch. c_i, the tangent's diagonal, turns gaps into forces for the contact level set.
+///
+/// With ContactMethod::vi the same conditions are a bound on the candidates' normal
+/// displacement, u_k <= position - X_k (side -1) or u_k >= position - X_k (side +1), handed to
+/// PETSc's SNESVINEWTONRSLS in configure(); residual and tangent are the wrapped system's, and
+/// lambda_i = side R_i is still the force (zero at a converged free node, the bound's reaction
+/// at a node held by it). The bounds are vectors of this system's layout, updated in place by
+/// set_position() (SNES keeps a reference to them), so every solve sees the plane where it is.
+/// The system must be the one the Newton solver solves (not wrapped by ArcLengthSystem, whose
+/// shell tangent SNES cannot restrict to the inactive rows).
 class RigidPlaneContact : public NonlinearSystem
 {
 public:
@@ -54,13 +80,17 @@ public:
   ///        W->sub({0}) for a mixed displacement-pressure formulation
   /// @param facet_tags, tag the candidate surface
   /// @param axis, side the plane's normal axis and the side of the plane the body is on
+  /// @param method how the complementarity conditions are solved
   RigidPlaneContact(NonlinearSystem& inner,
                     std::shared_ptr<const dolfinx::fem::FunctionSpace> displacement,
                     const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags, int tag, int axis,
-                    int side);
+                    int side, ContactMethod method = ContactMethod::active_set);
+  ~RigidPlaneContact() override;
+  RigidPlaneContact(const RigidPlaneContact&) = delete;
+  RigidPlaneContact& operator=(const RigidPlaneContact&) = delete;
 
-  /// Move the plane to x_axis = position.
-  void set_position(double position) { _position = position; }
+  /// Move the plane to x_axis = position (with ContactMethod::vi: and the bounds with it).
+  void set_position(double position);
   double position() const { return _position; }
 
   Vec unknowns() override { return _inner.unknowns(); }
@@ -70,7 +100,8 @@ public:
   Vec create_vector() const override { return _inner.create_vector(); }
   Mat create_matrix() const override { return _inner.create_matrix(); }
   bool admissible() const override { return _inner.admissible(); }
-  /// The wrapped system's prescribed rows and those of the nodes in contact.
+  /// The wrapped system's prescribed rows and those of the nodes in contact (where their rows
+  /// are replaced: not while a VI solver holds them at their bound).
   std::vector<PetscInt> prescribed_rows() const override;
   /// Accept the active set of the last residual evaluation.
   void commit() override;
@@ -78,6 +109,19 @@ public:
   /// system's history)
   void save_history(Vec h) const override;
   void load_history(Vec h) override;
+  /// With ContactMethod::vi, the predictor is the active set's (NonlinearSystem::set_predicting):
+  /// the nodes in contact at the last solution and those behind the moved plane are prescribed
+  /// onto it. Without it SNES starts from the last solution projected onto the moved plane,
+  /// the nodes pressed in without the body behind them (demos/pyramid/README.md measures it).
+  void set_predicting(bool predicting) override
+  {
+    _predicting = predicting;
+    _inner.set_predicting(predicting);
+  }
+  /// With ContactMethod::vi: make the SNES a bound-constrained Newton method
+  /// (-PREFIX_snes_type vinewtonrsls unless the user chose another VI type) with the plane's
+  /// bounds. Throws InputError for a SNES type that ignores bounds.
+  void configure(SNES snes) const override;
   NonlinearProblem& problem() override { return _inner.problem(); }
   const std::vector<PetscInt>& unknown_of_problem_dof() const override
   {
@@ -115,12 +159,21 @@ public:
   std::vector<Node> nodes() const;
 
 private:
+  /// Whether the candidates' rows are replaced in contact (the active set method, and the
+  /// predictor of the VI method)
+  bool rows_replaced() const { return _method == ContactMethod::active_set || _predicting; }
   /// The contact forces lambda and the active set at the current state, from the wrapped
   /// system's residual R and the committed set (into _lambda, _trial).
   void trial_active_set(Vec inner_residual);
 
   NonlinearSystem& _inner;
   int _axis, _side;
+  ContactMethod _method;
+  /// ContactMethod::vi: the bounds of the unknowns (-/+ infinity except at the candidates)
+  Vec _lower = nullptr, _upper = nullptr;
+  /// ContactMethod::vi: configure() handed the bounds to a solver
+  mutable bool _bounds_in_use = false;
+  bool _predicting = false;
   double _position = 0;
   /// Candidate nodes owned by this rank: the normal component's index in the unknowns and in
   /// the problem's vector, the problem dofs of all three components, the reference coordinates

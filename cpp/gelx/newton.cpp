@@ -112,6 +112,22 @@ PetscErrorCode count_reduction(SNESLineSearch, Vec, Vec Y, Vec, PetscBool* chang
                  });
 }
 
+/// The system in its predictor form for a scope (NonlinearSystem::set_predicting).
+class PredictorForm
+{
+public:
+  explicit PredictorForm(NonlinearSystem& system) : _system(system)
+  {
+    _system.set_predicting(true);
+  }
+  ~PredictorForm() { _system.set_predicting(false); }
+  PredictorForm(const PredictorForm&) = delete;
+  PredictorForm& operator=(const PredictorForm&) = delete;
+
+private:
+  NonlinearSystem& _system;
+};
+
 double distance(Vec a, Vec b, Vec work)
 {
   GELX_PETSC(VecWAXPY(work, -1.0, b, a));
@@ -232,9 +248,14 @@ void NewtonSolver::set_up(NonlinearSystem& system)
   GELX_PETSC(SNESSetFunction(_snes, _r, form_residual, context));
   GELX_PETSC(SNESSetJacobian(_snes, _A, _A, form_tangent, context));
   GELX_PETSC(SNESSetUpdate(_snes, commit_iterate));
-  GELX_PETSC(SNESSetConvergenceTest(_snes, converged, context, nullptr));
   system.configure(_snes);
   GELX_PETSC(SNESSetFromOptions(_snes));
+  // After the type is set: creating a VI type installs its own convergence test
+  GELX_PETSC(SNESSetConvergenceTest(_snes, converged, context, nullptr));
+  PetscBool bounded;
+  GELX_PETSC(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(_snes), &bounded,
+                                       SNESVINEWTONRSLS, SNESVINEWTONSSLS, ""));
+  _bounded = bounded;
   SNESLineSearch linesearch;
   GELX_PETSC(SNESGetLineSearch(_snes, &linesearch));
   GELX_PETSC(SNESLineSearchSetPreCheck(linesearch, admissible_step, context));
@@ -245,6 +266,7 @@ bool NewtonSolver::predict(NonlinearSystem& system)
 {
   Progress& p = _progress;
   NewtonReport& r = p.report;
+  const PredictorForm form(system);
   system.set_state(_x);
   GELX_PETSC(VecCopy(_x, p.x0));
   system.residual(_r);
@@ -259,10 +281,22 @@ bool NewtonSolver::predict(NonlinearSystem& system)
   system.tangent(_A);
   KSP ksp;
   GELX_PETSC(SNESGetKSP(_snes, &ksp));
+  // A VI solver hands this KSP the tangent restricted to its inactive rows, and a PC keeps
+  // the size of its first operator: before and after the full tangent, the KSP starts
+  // afresh, as the VI's own does when its set changes
+  const auto restart_bounded_ksp = [&]
+  {
+    if (!_bounded)
+      return;
+    GELX_PETSC(KSPReset(ksp));
+    GELX_PETSC(KSPResetFromOptions(ksp));
+  };
+  restart_bounded_ksp();
   GELX_PETSC(KSPSetOperators(ksp, _A, _A));
   GELX_PETSC(KSPSolve(ksp, _r, p.work));
   KSPConvergedReason reason;
   GELX_PETSC(KSPGetConvergedReason(ksp, &reason));
+  restart_bounded_ksp();
   if (reason < 0)
     return false; // SNES meets the same failure and reports it
   for (int k = 0; k <= p.admissible_halvings; ++k, ++r.backtracks)

@@ -52,6 +52,12 @@ struct NewtonReport
 ///   here, never a convergence.
 ///   -PREFIX_snes_rtol (1e-10), _atol (1e-12), _stol (1e-14) and _max_it (25) are PETSc's;
 ///   -PREFIX_rtol_increment (1e-8) and -PREFIX_atol_increment (1e-14) are gelx's.
+///   |R| is the norm SNES hands its convergence test: for the bound-constrained types
+///   (vinewtonrsls, vinewtonssls) not |R| but the residual's norm on the rows that no bound
+///   holds (SNESVIComputeInactiveSetFnorm for vinewtonrsls, at the start and after every line
+///   search, PETSc 3.18 src/snes/impls/vi/rs/virs.c): at a solution the rows held at a bound
+///   keep the bound's reaction (the contact force), which is no error. |R_0| is the predictor's
+///   start, in the system's predictor form (below), the same number for either contact method.
 /// - Per-iteration system updates (SNESSetUpdate): NonlinearSystem::commit().
 /// - A predictor: the first Newton step of a solve is taken whole (halved only for
 ///   admissibility) before SNES takes over. It carries a load step's increment, often the
@@ -60,6 +66,11 @@ struct NewtonReport
 ///   measured on the inflated shell, bt shortened every step to 0.1 and did not converge in 25
 ///   iterations where the whole first step converges in 4. The tolerances refer to the state
 ///   before it.
+///   The step is the system's in its predictor form (NonlinearSystem::set_predicting): for a
+///   VI solver the rows that will lie on a bound are prescribed there, which carries a bound's
+///   increment into the body. SNES alone projects the start onto the moved bounds and begins
+///   from that kinked state, and the plain Newton step of the unbounded residual releases the
+///   bounds' reactions: measured on the pyramid, both cycle or fail (demos/pyramid/README.md).
 class NewtonSolver
 {
 public:
@@ -109,6 +120,7 @@ private:
   MPI_Comm _comm;
   std::string _prefix;
   SNES _snes = nullptr;
+  bool _bounded = false; ///< a VI type: SNES projects onto bounds
   Mat _A = nullptr;
   Vec _r = nullptr, _x = nullptr;
   Progress _progress;

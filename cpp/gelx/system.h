@@ -76,6 +76,13 @@ public:
   /// preconditioner for a bordered tangent); NewtonSolver calls it before reading its options.
   virtual void configure(SNES) const {}
 
+  /// While `predicting`, residual() and tangent() are those of NewtonSolver's predictor step:
+  /// a system whose bounds a VI solver handles (RigidPlaneContact with ContactMethod::vi)
+  /// prescribes there the rows that will lie on a bound, at the bound's new value, so that the
+  /// bound's increment carries the body with it as a Dirichlet condition's lifting does.
+  /// Decorators with such rows override it and pass it inward.
+  virtual void set_predicting(bool /*predicting*/) {}
+
   /// The base problem: its mesh, displacement and forms (for outputs and for decorators).
   virtual NonlinearProblem& problem() = 0;
   /// For each owned entry of the base problem's vector, its local index in unknowns(), or -1

@@ -126,7 +126,8 @@ PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry,
   }
   // The substrate z = t + H - d below which the body must stay (side -1)
   _contact = std::make_unique<RigidPlaneContact>(*symmetric, displacement, *_mesh.facet_tags,
-                                                 _mesh.tag("lateral"), 2, -1);
+                                                 _mesh.tag("lateral"), 2, -1,
+                                                 contact_method_option());
   set_indentation(0);
   _stress = std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
       *kernels.stress, {{"w", _w}}, constants, _mesh.mesh));

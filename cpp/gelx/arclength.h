@@ -68,6 +68,13 @@ public:
   {
     return _inner.unknown_of_problem_dof();
   }
+  /// Move x along (-K^-1 f, 1), the direction that keeps the wrapped residual to first order,
+  /// onto the sphere |x - x0|^2 + psi^2 (lambda - l0)^2 = ds^2 (the root nearest x). The
+  /// Newton step satisfies the linearised condition only; without this the condition's
+  /// second-order remainder, not the forces, decides the last iteration (measured on the
+  /// buckling column's nearly linear straight path: 25 corrector iterations in 11 steps
+  /// against 15 with it).
+  bool project(Vec x) override;
   /// Make the SNES's linear solver the shell preconditioner (NewtonSolver calls it).
   void configure(SNES snes) const override;
 

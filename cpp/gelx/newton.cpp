@@ -96,8 +96,9 @@ PetscErrorCode admissible_step(SNESLineSearch, Vec X, Vec Y, PetscBool* changed,
 }
 
 /// Line-search post-check: count a reduction of the step by the line search itself (those
-/// that backtrack hand over Y scaled by their step length).
-PetscErrorCode count_reduction(SNESLineSearch, Vec, Vec Y, Vec, PetscBool* changed_y,
+/// that backtrack hand over Y scaled by their step length), then let the system project the
+/// new iterate W (NonlinearSystem::project).
+PetscErrorCode count_reduction(SNESLineSearch, Vec, Vec Y, Vec W, PetscBool* changed_y,
                                PetscBool* changed_w, void* ctx)
 {
   auto& c = *static_cast<Context*>(ctx);
@@ -109,6 +110,8 @@ PetscErrorCode count_reduction(SNESLineSearch, Vec, Vec Y, Vec, PetscBool* chang
                    GELX_PETSC(VecNorm(Y, NORM_2, &norm));
                    if (norm < (1 - 1e-12) * c.progress->step_norm)
                      ++c.progress->report.backtracks;
+                   if (c.progress->system->project(W))
+                     *changed_w = PETSC_TRUE;
                  });
 }
 

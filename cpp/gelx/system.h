@@ -72,6 +72,12 @@ public:
   virtual void save_history(Vec /*h*/) const {}
   virtual void load_history(Vec /*h*/) {}
 
+  /// After each Newton update (a line-search post-check), move the new iterate x onto the set
+  /// where an equation of this system holds exactly, if it has one; returns whether x changed.
+  /// ArcLengthSystem puts it back on the arc-length sphere (Crisfield's choice of the load
+  /// increment), which the linearised condition of the Newton step misses at second order.
+  virtual bool project(Vec /*x*/) { return false; }
+
   /// Set up what a solver of this system needs beyond residual and tangent (a shell
   /// preconditioner for a bordered tangent); NewtonSolver calls it before reading its options.
   virtual void configure(SNES) const {}

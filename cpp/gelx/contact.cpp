@@ -7,8 +7,6 @@
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/DofMap.h>
 #include <dolfinx/fem/utils.h>
-#include <dolfinx/la/Vector.h>
-#include <functional>
 
 namespace gelx
 {
@@ -49,20 +47,14 @@ RigidPlaneContact::RigidPlaneContact(NonlinearSystem& inner,
   const std::vector<double> X = V0->tabulate_dof_coordinates(false);
   const int fdim = V0->mesh()->topology().dim() - 1;
   const std::vector<PetscInt>& row_of = inner.unknown_of_problem_dof();
-  // The candidates: the nodes of the tagged facets. A rank can own a node on the surface
-  // without holding any tagged facet through it (its cells there touch the node by an edge
-  // only), so every rank marks the nodes of its facets and the owners gather the marks
-  dolfinx::la::Vector<double> marked(V0->dofmap()->index_map, 1);
-  for (std::int32_t node :
-       dolfinx::fem::locate_dofs_topological(*V0, fdim, facet_tags.find(tag), false))
-    marked.mutable_array()[node] = 1;
-  marked.scatter_rev(std::plus<double>());
-  const auto is_marked = marked.array();
+  // remote = true: a rank can own a node of the surface without holding any tagged facet
+  // through it (its cells touch the node by an edge only); dolfinx then finds it for the owner
   std::string error;
-  for (std::int32_t node = 0; node < V0->dofmap()->index_map->size_local(); ++node)
+  for (std::int32_t node :
+       dolfinx::fem::locate_dofs_topological(*V0, fdim, facet_tags.find(tag), true))
   {
     const std::int32_t dof = problem_dof(node, axis);
-    if (is_marked[node] == 0 || dof >= num_owned)
+    if (dof >= num_owned)
       continue;
     if (row_of[dof] < 0)
       error = "contact: the normal displacement of a candidate node is constrained by a "

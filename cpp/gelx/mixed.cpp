@@ -64,7 +64,7 @@ reaction_force(const NonlinearProblem& problem, const dolfinx::fem::FunctionSpac
   {
     auto sub = displacement.sub({c});
     for (std::int32_t dof :
-         dolfinx::fem::locate_dofs_topological(*sub, fdim, facet_tags.find(tag), false))
+         dolfinx::fem::locate_dofs_topological(*sub, fdim, facet_tags.find(tag), true))
       if (dof < num_owned)
         local[c] += f_array[dof];
   }

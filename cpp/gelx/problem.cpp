@@ -210,7 +210,7 @@ Resultant boundary_resultant(const NonlinearProblem& problem,
     throw std::runtime_error("boundary_resultant needs a 3-D vector displacement space");
   const int fdim = V.mesh()->topology().dim() - 1;
   const std::vector<std::int32_t> nodes
-      = dolfinx::fem::locate_dofs_topological(V, fdim, facet_tags.find(tag), false);
+      = dolfinx::fem::locate_dofs_topological(V, fdim, facet_tags.find(tag), true);
   const std::int32_t num_owned = V.dofmap()->index_map->size_local();
 
   Vec f = problem.create_vector();

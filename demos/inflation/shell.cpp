@@ -46,7 +46,7 @@ InflatedShell::InflatedShell(MPI_Comm comm, const std::string& geo_file, ShellPa
   _X = V->tabulate_dof_coordinates(false);
   const std::int32_t owned = V->dofmap()->index_map->size_local();
   for (std::int32_t n : fem::locate_dofs_topological(
-           *V, 2, _geo.facet_tags->find(_geo.tag("inner")), false))
+           *V, 2, _geo.facet_tags->find(_geo.tag("inner")), true))
     if (n < owned)
       _inner_nodes.push_back(n);
 }

@@ -1,7 +1,7 @@
 """A run killed with SIGKILL in the middle of its path keeps every completed step readable.
 
-The scene runs under mpirun with its own process group; once steps.csv holds KILL_AFTER rows,
-the whole group gets SIGKILL (no handler can run: what is on disk is all that is left). Then:
+The scene runs under mpirun; once steps.csv holds KILL_AFTER rows, mpirun and every rank get
+SIGKILL (tests/killing.py; no handler can run: what is on disk is all that is left). Then:
 - fields.xdmf parses, and every step it names has its mesh and all its fields in HDF5, each
   dataset of the shape the index declares and with finite values (demos/fields.py);
 - steps.csv holds whole rows only, as many as fields.xdmf has steps, and the times agree;
@@ -12,15 +12,12 @@ usage: fault_kill.py RANKS KILL_AFTER TIME_COLUMN OUTPUT_DIR SCENE_BINARY [scene
 import csv
 import json
 import math
-import os
 import pathlib
 import shutil
-import signal
-import subprocess
 import sys
-import time
 
 from checks import Checks
+from killing import run_until
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 from fields import FieldSeries  # noqa: E402  (demos/fields.py)
@@ -39,13 +36,7 @@ def rows_written():
         return 0
 
 
-run = subprocess.Popen(command, start_new_session=True, stdout=subprocess.DEVNULL)
-deadline = time.monotonic() + 900  # a hang guard, far above the seconds these runs take
-while rows_written() < kill_after and run.poll() is None and time.monotonic() < deadline:
-    time.sleep(0.05)
-still_running = run.poll() is None
-os.killpg(run.pid, signal.SIGKILL)
-run.wait()
+still_running = run_until(command, lambda: rows_written() >= kill_after)
 checks.require(f"killed while running, after {rows_written()} rows of steps.csv "
                f"(asked: {kill_after})", still_running and rows_written() >= kill_after)
 

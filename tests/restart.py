@@ -3,7 +3,7 @@ run ended: the same quantities, the same rows of steps.csv, one fields.xdmf step
 the same final displacement, and no step lost or written twice.
 
 The scene runs under mpirun at the reference run's rank count; once steps.csv holds KILL_AFTER
-rows the whole process group gets SIGKILL. Two copies of what it left are then continued with
+rows mpirun and every rank get SIGKILL (tests/killing.py). Two copies of what it left are then continued with
 `--restart DIR` alone: one at the same rank count, which must reproduce the reference to
 1e-10 (the same partition and the same operations from the same state: the reference's path
 from the checkpoint on, up to the round-off of a different order of MPI messages), and one at
@@ -18,11 +18,8 @@ the first of COLUMNS is the path's time (strictly increasing along steps.csv).
 """
 import csv
 import json
-import os
 import pathlib
-import re
 import shutil
-import signal
 import subprocess
 import sys
 import time
@@ -30,6 +27,7 @@ import time
 import numpy as np
 
 from checks import Checks
+from killing import run_until
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 from fields import FieldSeries  # noqa: E402  (demos/fields.py)
@@ -85,15 +83,8 @@ killed = work / "killed"
 shutil.rmtree(work, ignore_errors=True)
 work.mkdir(parents=True)
 start = time.monotonic()
-run = subprocess.Popen(mpirun(ranks, ["--output", str(killed)] + options),
-                       start_new_session=True, stdout=subprocess.DEVNULL)
-deadline = time.monotonic() + 900  # a hang guard, far above the seconds these runs take
-while rows_written(killed) < kill_after and run.poll() is None and time.monotonic() < deadline:
-    time.sleep(0.05)
-still_running = run.poll() is None
-if still_running:
-    os.killpg(run.pid, signal.SIGKILL)
-run.wait()
+still_running = run_until(mpirun(ranks, ["--output", str(killed)] + options),
+                          lambda: rows_written(killed) >= kill_after)
 print(f"killed run: {time.monotonic() - start:.1f} s")
 checks.require(f"killed at {ranks} ranks while running, after {rows_written(killed)} rows of "
                f"steps.csv (asked: {kill_after}; the reference has {len(rows_of(reference))})",

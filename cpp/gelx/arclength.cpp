@@ -1,4 +1,5 @@
 #include "arclength.h"
+#include "parameters.h"
 #include "petsc_utils.h"
 #include "problem.h"
 
@@ -67,6 +68,34 @@ const std::string& with_corrector_defaults(const std::string& prefix)
   // condition and keeps iterating (measured on the inflated shell: the two attempts that fail
   // took 14 and 15 iterations with halvings, 3 and 2 without, on the same path)
   set_default_option(prefix, "admissible_halvings", "0");
+  return prefix;
+}
+
+/// How a continuation tracks the stability of its points (-PREFIX_stability).
+enum class Stability
+{
+  none,
+  eigenvalue, ///< the tangent's eigenvalue nearest zero (SLEPc, lowest_tangent_eigenpair)
+  inertia     ///< the tangent's negative eigenvalues, from its LDL^T factors
+};
+
+Stability stability_test(const std::string& prefix)
+{
+  const std::string name = string_option(prefix, "stability", "none");
+  if (name == "none")
+    return Stability::none;
+  if (name == "eigenvalue")
+    return Stability::eigenvalue;
+  if (name == "inertia")
+    return Stability::inertia;
+  throw InputError("-" + prefix + "stability " + name + ": must be none, eigenvalue or inertia");
+}
+
+/// The inertia is read from the factorisation of K the predictor makes: make it an LDL^T one.
+const std::string& with_stability_defaults(const std::string& prefix)
+{
+  if (stability_test(prefix) == Stability::inertia)
+    default_to_symmetric_factorisation(prefix);
   return prefix;
 }
 } // namespace
@@ -191,6 +220,11 @@ void ArcLengthSystem::solve_tangent(Vec b, Vec y)
                            + KSPConvergedReasons[reason]);
 }
 
+int ArcLengthSystem::tangent_negative_eigenvalues() const
+{
+  return factored_negative_eigenvalues(_ksp);
+}
+
 void ArcLengthSystem::tangent(Mat)
 {
   GELX_PETSC(VecWAXPY(_g, -1.0, _x0, _inner.unknowns()));
@@ -259,7 +293,8 @@ void ArcLengthSystem::configure(SNES snes) const
 
 ArcLength::ArcLength(MPI_Comm comm, NonlinearSystem& system,
                      std::function<void(double)> set_load, const std::string& prefix)
-    : _comm(comm), _system(system), _bordered(system, std::move(set_load), prefix),
+    : _comm(comm), _system(system),
+      _bordered(system, std::move(set_load), with_stability_defaults(prefix)),
       _newton(comm, with_corrector_defaults(prefix)), _prefix(prefix),
       _load(system.create_vector())
 {
@@ -326,7 +361,7 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
   const double psi = real_option(_prefix, "psi", 0.0);
   const int target_it = int_option(_prefix, "target_it", 5);
   const double rtol = real_option(_prefix, "rtol", 1e-9);
-  const bool track_stability = int_option(_prefix, "stability", 0) != 0;
+  const Stability stability = stability_test(_prefix);
   PetscReal atol;
   GELX_PETSC(SNESGetTolerances(_newton.snes(), &atol, nullptr, nullptr, nullptr, nullptr));
   const bool root = dolfinx::MPI::rank(_comm) == 0;
@@ -338,11 +373,30 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
     last.load = state.load;
     last.arc_length = state.arc_length;
     last.stability = state.stability;
+    last.negative_eigenvalues = state.negative_eigenvalues;
     if (stop(last))
       return;
   }
   OwnedVec x0(_system.create_vector()), t(_system.create_vector());
   OwnedVec bordered(_bordered.create_vector()), last_point(_bordered.create_vector());
+  // The predictor's direction at the current point, along the path's tangent or along the
+  // crossing branch's mode; its solve factorises the tangent there, whose inertia is then
+  // the point's stability at no extra cost
+  double t_l = 0;
+  auto predictor_direction = [&]
+  {
+    _bordered.pack(_system.unknowns(), state.load, bordered.get());
+    _bordered.set_state(bordered.get());
+    if (_switch_pending)
+    {
+      GELX_PETSC(VecCopy(state.direction.get(), t.get()));
+      _bordered.load_derivative(_load.get());
+      t_l = 0;
+    }
+    else
+      t_l = tangent_direction(state, psi, t.get());
+  };
+  predictor_direction();
   while (state.step < max_steps)
   {
     const auto start = std::chrono::steady_clock::now();
@@ -350,24 +404,13 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
     const double l0 = state.load;
     int cutbacks = 0;
     NewtonReport report;
+    // |dR/dlambda| is the force scale of the residual test
+    PetscReal f_norm;
+    GELX_PETSC(VecNorm(_load.get(), NORM_2, &f_norm));
+    GELX_PETSC(SNESSetTolerances(_newton.snes(), std::max<double>(atol, rtol * f_norm),
+                                 PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
     while (true)
     {
-      // Predictor: along the path's tangent, or along the crossing branch's mode
-      _bordered.pack(x0.get(), l0, bordered.get());
-      _bordered.set_state(bordered.get());
-      double t_l = 0;
-      if (_switch_pending)
-      {
-        GELX_PETSC(VecCopy(state.direction.get(), t.get()));
-        _bordered.load_derivative(_load.get());
-      }
-      else
-        t_l = tangent_direction(state, psi, t.get());
-      // |dR/dlambda| is the force scale of the residual test
-      PetscReal f_norm;
-      GELX_PETSC(VecNorm(_load.get(), NORM_2, &f_norm));
-      GELX_PETSC(SNESSetTolerances(_newton.snes(), std::max<double>(atol, rtol * f_norm),
-                                   PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
       GELX_PETSC(VecWAXPY(_system.unknowns(), ds, t.get(), x0.get()));
       _bordered.pack(_system.unknowns(), l0 + ds * t_l, bordered.get());
       _bordered.set_constraint(x0.get(), l0, ds, psi);
@@ -410,15 +453,23 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
     record.newton = report;
     record.cutbacks = cutbacks;
     record.limit_point = previous_load_direction * state.load_direction < 0;
-    if (track_stability)
+    predictor_direction();
+    if (stability == Stability::eigenvalue)
     {
-      const double previous_stability = state.stability;
-      _bordered.inner().tangent(_bordered.inner_tangent());
+      const double previous = state.stability;
       state.stability = lowest_tangent_eigenpair(_comm, _bordered.inner_tangent(),
                                                  _system.problem().u()->function_space())
                             .load_factor;
       record.stability = state.stability;
-      record.bifurcation = !record.limit_point && previous_stability * state.stability < 0;
+      record.bifurcation = !record.limit_point && previous * state.stability < 0;
+    }
+    else if (stability == Stability::inertia)
+    {
+      const int previous = state.negative_eigenvalues;
+      state.negative_eigenvalues = _bordered.tangent_negative_eigenvalues();
+      record.negative_eigenvalues = state.negative_eigenvalues;
+      record.bifurcation = !record.limit_point && previous >= 0
+                           && previous != state.negative_eigenvalues;
     }
     ds = std::min(ds_max, ds * std::clamp(std::sqrt(double(target_it)
                                                     / std::max(report.iterations, 1)),

@@ -79,8 +79,11 @@ public:
   void configure(SNES snes) const override;
 
   NonlinearSystem& inner() { return _inner; }
-  /// The wrapped system's tangent at the last tangent() (for eigenvalues).
+  /// The wrapped system's tangent at the last tangent() or solve_tangent() (for eigenvalues).
   Mat inner_tangent() const { return _K; }
+  /// Its number of negative eigenvalues, read from its factors (factored_negative_eigenvalues:
+  /// for an LDL^T factorisation).
+  int tangent_negative_eigenvalues() const;
 
   /// For the shell's C callbacks.
   void apply_tangent(Vec v, Vec y) const;
@@ -115,9 +118,20 @@ private:
 ///
 /// gelx options (prefix PREFIX): ds (first arc length), ds_max, ds_min, psi, target_it
 /// (iterations per step the adaptation aims at), rtol (|R| <= rtol |dR/dlambda|, the force
-/// scale of the load), stability (1: the tangent's eigenvalue nearest zero at every point, to
-/// detect bifurcations; see lowest_tangent_eigenpair). PETSc's: -PREFIX_snes_* (max_it 15, the
-/// basic line search, i.e. full corrector steps, by default), -PREFIX_ksp_*, -PREFIX_pc_* for K.
+/// scale of the load), stability: how each point's stability is tracked to detect
+/// bifurcations (StepRecord::bifurcation) —
+///   none (default);
+///   eigenvalue: the tangent's eigenvalue nearest zero (SLEPc shift-invert,
+///     lowest_tangent_eigenpair: one more factorisation and an eigensolve per point), whose
+///     sign change marks a crossing; it also gives the crossing mode (switch_branch) and how
+///     far the point is from one; but it sees one eigenvalue, so two crossing together (a
+///     double bifurcation, or two within one step) cancel in its sign;
+///   inertia: the number of negative eigenvalues of the tangent, read from the LDL^T
+///     factorisation the next predictor makes anyway (K is then factorised by MUMPS's
+///     Cholesky, default_to_symmetric_factorisation): free, and it counts every crossing;
+///     it needs a symmetric tangent (no contact rows, which are not symmetric).
+/// PETSc's: -PREFIX_snes_* (max_it 15, the basic line search, i.e. full corrector steps, by
+/// default), -PREFIX_ksp_*, -PREFIX_pc_* for K.
 class ArcLength
 {
 public:

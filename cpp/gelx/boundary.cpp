@@ -18,6 +18,12 @@ DirichletConditions::DirichletConditions(
 
 void DirichletConditions::prescribe(int tag, int component, Profile value)
 {
+  prescribe(tag, component, std::move(value), nullptr);
+}
+
+void DirichletConditions::prescribe(int tag, int component, Profile value,
+                                    const std::function<bool(const std::array<double, 3>&)>& where)
+{
   const auto& mesh = *_V->mesh();
   const int fdim = mesh.topology().dim() - 1;
   if (component < 0 || component >= mesh.geometry().dim())
@@ -28,6 +34,19 @@ void DirichletConditions::prescribe(int tag, int component, Profile value)
   auto sub = _V->sub({component});
   auto collapsed = std::make_shared<dolfinx::fem::FunctionSpace>(sub->collapse().first);
   auto dofs = dolfinx::fem::locate_dofs_topological({*sub, *collapsed}, fdim, facets);
+  if (where)
+  {
+    const std::vector<double> X = collapsed->tabulate_dof_coordinates(false);
+    std::array<std::vector<std::int32_t>, 2> kept;
+    for (std::size_t i = 0; i < dofs[1].size(); ++i)
+    {
+      const double* x = X.data() + 3 * dofs[1][i];
+      if (where({x[0], x[1], x[2]}))
+        for (int k : {0, 1})
+          kept[k].push_back(dofs[k][i]);
+    }
+    dofs = std::move(kept);
+  }
   auto g = std::make_shared<dolfinx::fem::Function<double>>(collapsed);
 
   _conditions.push_back({g, std::move(value)});
@@ -37,6 +56,12 @@ void DirichletConditions::prescribe(int tag, int component, Profile value)
 void DirichletConditions::fix(int tag, int component)
 {
   prescribe(tag, component, [](double, const std::array<double, 3>&) { return 0.0; });
+}
+
+void DirichletConditions::fix(int tag, int component,
+                              const std::function<bool(const std::array<double, 3>&)>& where)
+{
+  prescribe(tag, component, [](double, const std::array<double, 3>&) { return 0.0; }, where);
 }
 
 void DirichletConditions::clamp(int tag)

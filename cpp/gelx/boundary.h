@@ -33,6 +33,9 @@ public:
 
   /// Hold u_component = 0 on the facets tagged `tag` (a roller when used for one component).
   void fix(int tag, int component);
+  /// The same at the dofs of those facets whose position X satisfies `where` only (a line of
+  /// a face: pins a rigid motion without holding the face's in-plane strain).
+  void fix(int tag, int component, const std::function<bool(const std::array<double, 3>&)>& where);
 
   /// Clamp: u = 0 on the facets tagged `tag`.
   void clamp(int tag);
@@ -46,6 +49,8 @@ public:
   }
 
 private:
+  void prescribe(int tag, int component, Profile value,
+                 const std::function<bool(const std::array<double, 3>&)>& where);
   struct Condition
   {
     /// Evaluated on every cell, so that each rank computes the values of all its dofs, owned

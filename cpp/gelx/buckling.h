@@ -6,6 +6,7 @@
 #include <dolfinx/mesh/Mesh.h>
 #include <memory>
 #include <mpi.h>
+#include <petscksp.h>
 #include <petscmat.h>
 #include <string>
 #include <vector>
@@ -52,6 +53,27 @@ private:
 /// physical eigenvalue sought is nearer zero than 1, which holds near instabilities.
 BucklingMode lowest_tangent_eigenpair(MPI_Comm comm, Mat K,
                                       std::shared_ptr<const dolfinx::fem::FunctionSpace> space);
+
+/// Make the linear solver with options `prefix` factorise by MUMPS's LDL^T (Cholesky of a
+/// symmetric, possibly indefinite matrix) unless the user chose otherwise, with ICNTL(13) = 1:
+/// MUMPS's ScaLAPACK root front does not report the signs of its pivots, so without it the
+/// parallel inertia is wrong (PETSc refuses MatGetInertia then).
+void default_to_symmetric_factorisation(const std::string& prefix);
+
+/// The number of negative eigenvalues of the symmetric matrix that `ksp` factorised at its
+/// last set-up, read from the signs of its LDL^T factors (Sylvester's law of inertia,
+/// MatGetInertia): no extra factorisation. Throws unless the factorisation is a Cholesky
+/// (LDL^T) one by MUMPS, the only parallel one in PETSc 3.18 that reports an inertia.
+///
+/// For a tangent it counts the directions in which the equilibrium is unstable: along a path
+/// it changes by the number of eigenvalues that cross zero, also when several cross together
+/// (a double bifurcation), which the eigenvalue nearest zero cannot tell. For a mixed u-p
+/// tangent, a saddle point, it also counts one per pressure unknown.
+int factored_negative_eigenvalues(KSP ksp);
+
+/// Factorise the symmetric K by LDL^T (default_to_symmetric_factorisation, options prefix
+/// `inertia_`) and return its number of negative eigenvalues. Collective.
+int negative_eigenvalues(MPI_Comm comm, Mat K);
 
 /// Add the imperfection sum_i amplitude_i * mode_i to the mesh coordinates (as ABAQUS
 /// *IMPERFECTION does): each mode (largest component 1) is evaluated at the mesh nodes.

@@ -161,6 +161,7 @@ nlohmann::json path_to_json(const PathState& s)
           {"load_direction", s.load_direction},
           {"stability", std::isnan(s.stability) ? nlohmann::json(nullptr)
                                                 : nlohmann::json(s.stability)},
+          {"negative_eigenvalues", s.negative_eigenvalues},
           {"scene", s.scene}};
 }
 
@@ -175,6 +176,7 @@ PathState path_from_json(const nlohmann::json& j)
   s.cutbacks = j.at("cutbacks");
   s.load_direction = j.at("load_direction");
   s.stability = j.at("stability").is_null() ? NAN : j.at("stability").get<double>();
+  s.negative_eigenvalues = j.at("negative_eigenvalues");
   s.scene = j.at("scene");
   return s;
 }

@@ -43,6 +43,7 @@ struct PathState
   OwnedVec direction;
   double load_direction = 0;
   double stability = NAN; ///< the tangent's eigenvalue nearest zero at the last point, if tracked
+  int negative_eigenvalues = -1; ///< the tangent's negative eigenvalues there (inertia), if tracked
   /// What the scene accumulates along the path (curves for fits, extrema): its observers keep
   /// it here so that a restart continues it
   nlohmann::json scene = nlohmann::json::object();
@@ -60,7 +61,10 @@ struct StepRecord
   double wall_time = 0;     ///< seconds spent on this step, failed attempts included
   bool limit_point = false; ///< the load passed an extremum since the previous point
   double stability = NAN;   ///< the tangent's eigenvalue nearest zero (when tracked)
-  bool bifurcation = false; ///< the stability changed sign without a load extremum
+  int negative_eigenvalues = -1; ///< the tangent's negative eigenvalues (inertia; when tracked)
+  /// The stability changed without a load extremum: the eigenvalue nearest zero changed sign,
+  /// or the number of negative eigenvalues changed
+  bool bifurcation = false;
 };
 
 /// Sees every completed step with the path's state after it (write output there: a step

@@ -34,7 +34,15 @@ EulerColumn::EulerColumn(MPI_Comm comm, ColumnParameters p)
       _box.mesh, 2, std::vector<std::int32_t>(top), std::vector<std::int32_t>(top.size(), 2));
 
   _bcs = std::make_unique<DirichletConditions>(V, _box.facet_tags);
-  _bcs->clamp(_box.tag("z_min"));
+  if (p.base == "sliding")
+  {
+    const double tol = 1e-10 * std::max(p.tx, p.ty);
+    _bcs->fix(_box.tag("z_min"), 2);
+    _bcs->fix(_box.tag("z_min"), 0, [&](auto& X) { return std::abs(X[0] - p.tx / 2) < tol; });
+    _bcs->fix(_box.tag("z_min"), 1, [&](auto& X) { return std::abs(X[1] - p.ty / 2) < tol; });
+  }
+  else
+    _bcs->clamp(_box.tag("z_min"));
   if (p.clamped_clamped())
   {
     // The shortening that carries lambda Euler loads in the straight column

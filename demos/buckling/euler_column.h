@@ -30,6 +30,14 @@ struct ColumnParameters
   double G = 1.0;   ///< shear modulus
   double nu = 0.3;  ///< Poisson's ratio (bulk modulus K = 2G(1 + nu)/(3(1 - 2nu)))
   std::string ends = "clamped-free"; ///< or "clamped-clamped"
+  /// "clamped" (u = 0) or "sliding": the end z = 0 slides in its plane (u_z = 0; u_x = 0 on
+  /// its mid-line x = tx/2 and u_y = 0 on y = ty/2 pin the rigid motions), so that its
+  /// Poisson expansion is free and the straight column is a homogeneous state, which the mesh
+  /// represents exactly: the perfect column stays straight past its critical loads. The
+  /// clamped end holds the expansion back, and on the box mesh, not mirror-symmetric, that acts
+  /// as a small imperfection: the straight path bends over at P_cr. Either end is clamped
+  /// against rotation.
+  std::string base = "clamped";
   bool clamped_clamped() const { return ends == "clamped-clamped"; }
 };
 

@@ -162,7 +162,7 @@ int main(int argc, char* argv[])
     //    load weighed into the step (psi = 1) since the straight column barely moves; the
     //    tangent's eigenvalue nearest zero is computed at every point.
     auto straight = continuation("straight_arclength_", {{"psi", "1"}, {"ds", "0.1"},
-                                                         {"ds_max", "0.1"}, {"stability", "1"}});
+                                                         {"ds_max", "0.1"}, {"stability", "eigenvalue"}});
     double lambda_stable = 0, lambda_unstable = NAN;
     gelx::PathState straight_path;
     straight->run(straight_path, a.max_steps,

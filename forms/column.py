@@ -23,6 +23,7 @@ dx = ufl.dx(metadata={"quadrature_degree": materials.quadrature_degree(degree)})
 ds = ufl.ds(metadata={"quadrature_degree": materials.quadrature_degree(degree)})
 v = ufl.TestFunction(V)
 residual = ufl.derivative(psi * dx, u, v) + q * v[2] * ds(2)
+potential_energy = psi * dx + q * u[2] * ds(2)  # the residual is its derivative
 tangent = ufl.derivative(residual, u, ufl.TrialFunction(V))
 
 # Symmetry of the lateral deflection v_x of a mode about z = L/2
@@ -35,5 +36,5 @@ mode_even_scale = abs(mode[0]) * dx
 
 det_F = ufl.det(F)  # admissibility: det F > 0
 
-forms = [residual, tangent, mode_odd_part, mode_odd_scale, mode_even_part, mode_even_scale]
+forms = [residual, tangent, potential_energy, mode_odd_part, mode_odd_scale, mode_even_part, mode_even_scale]
 expressions = [(det_F, materials.quadrature_points(cell, materials.quadrature_degree(degree)))]

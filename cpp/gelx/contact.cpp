@@ -25,7 +25,7 @@ RigidPlaneContact::RigidPlaneContact(NonlinearSystem& inner,
                                      std::shared_ptr<const dolfinx::fem::FunctionSpace> displacement,
                                      const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags,
                                      int tag, int axis, int side, ContactMethod method)
-    : _inner(inner), _axis(axis), _side(side), _method(method)
+    : SystemDecorator(inner), _axis(axis), _side(side), _method(method)
 {
   const auto& W = *inner.problem().u()->function_space();
   const std::int32_t num_owned = W.dofmap()->index_map->size_local() * W.dofmap()->index_map_bs();

@@ -72,7 +72,7 @@ ContactMethod contact_method_option(const std::string& prefix = "contact_");
 /// set_position() (SNES keeps a reference to them), so every solve sees the plane where it is.
 /// The system must be the one the Newton solver solves (not wrapped by ArcLengthSystem, whose
 /// shell tangent SNES cannot restrict to the inactive rows).
-class RigidPlaneContact : public NonlinearSystem
+class RigidPlaneContact : public SystemDecorator
 {
 public:
   /// @param inner the system without the plane
@@ -93,13 +93,8 @@ public:
   void set_position(double position);
   double position() const { return _position; }
 
-  Vec unknowns() override { return _inner.unknowns(); }
-  void unknowns_changed() override { _inner.unknowns_changed(); }
   void residual(Vec r) override;
   void tangent(Mat A) override;
-  Vec create_vector() const override { return _inner.create_vector(); }
-  Mat create_matrix() const override { return _inner.create_matrix(); }
-  bool admissible() const override { return _inner.admissible(); }
   /// The wrapped system's prescribed rows and those of the nodes in contact (where their rows
   /// are replaced: not while a VI solver holds them at their bound).
   std::vector<PetscInt> prescribed_rows() const override;
@@ -122,11 +117,6 @@ public:
   /// (-PREFIX_snes_type vinewtonrsls unless the user chose another VI type) with the plane's
   /// bounds. Throws InputError for a SNES type that ignores bounds.
   void configure(SNES snes) const override;
-  NonlinearProblem& problem() override { return _inner.problem(); }
-  const std::vector<PetscInt>& unknown_of_problem_dof() const override
-  {
-    return _inner.unknown_of_problem_dof();
-  }
 
   /// Force, active set size and penetration at the current state. Collective.
   ContactState state();
@@ -166,7 +156,6 @@ private:
   /// system's residual R and the committed set (into _lambda, _trial).
   void trial_active_set(Vec inner_residual);
 
-  NonlinearSystem& _inner;
   int _axis, _side;
   ContactMethod _method;
   /// ContactMethod::vi: the bounds of the unknowns (-/+ infinity except at the candidates)

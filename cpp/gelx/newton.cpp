@@ -72,7 +72,8 @@ PetscErrorCode commit_iterate(SNES snes, PetscInt)
   return guarded(c.error, [&] { c.progress->system->commit(); });
 }
 
-/// Line-search pre-check: halve the step -Y until X - Y is admissible (see the class comment).
+/// Line-search pre-check: scale the step -Y by the system's factor (NonlinearSystem::
+/// step_factor), then halve it until X - Y is admissible (see the class comment).
 PetscErrorCode admissible_step(SNESLineSearch, Vec X, Vec Y, PetscBool* changed, void* ctx)
 {
   auto& c = *static_cast<Context*>(ctx);
@@ -80,7 +81,10 @@ PetscErrorCode admissible_step(SNESLineSearch, Vec X, Vec Y, PetscBool* changed,
                  [&]
                  {
                    Progress& p = *c.progress;
-                   *changed = PETSC_FALSE;
+                   const double factor = p.system->step_factor(X, Y);
+                   *changed = factor != 1.0 ? PETSC_TRUE : PETSC_FALSE;
+                   if (*changed)
+                     GELX_PETSC(VecScale(Y, factor));
                    for (int k = 0; k < p.admissible_halvings; ++k)
                    {
                      GELX_PETSC(VecWAXPY(p.work, -1.0, Y, X));
@@ -302,6 +306,7 @@ bool NewtonSolver::predict(NonlinearSystem& system)
   restart_bounded_ksp();
   if (reason < 0)
     return false; // SNES meets the same failure and reports it
+  GELX_PETSC(VecScale(p.work, system.step_factor(p.x0, p.work)));
   for (int k = 0; k <= p.admissible_halvings; ++k, ++r.backtracks)
   {
     GELX_PETSC(VecWAXPY(p.x_previous, -1.0, p.work, p.x0));

@@ -78,6 +78,11 @@ public:
   /// increment), which the linearised condition of the Newton step misses at second order.
   virtual bool project(Vec /*x*/) { return false; }
 
+  /// Before each Newton update x <- x - y (a line-search pre-check, and the predictor), the
+  /// factor y is scaled by: 1 for a plain system. DeflatedSystem returns the factor that
+  /// makes y the Newton step of its deflated residual (deflation.h).
+  virtual double step_factor(Vec /*x*/, Vec /*y*/) { return 1.0; }
+
   /// Set up what a solver of this system needs beyond residual and tangent (a shell
   /// preconditioner for a bordered tangent); NewtonSolver calls it before reading its options.
   virtual void configure(SNES) const {}
@@ -94,6 +99,40 @@ public:
   /// For each owned entry of the base problem's vector, its local index in unknowns(), or -1
   /// where it is no unknown of its own (a constrained slave). The identity for the problem.
   virtual const std::vector<PetscInt>& unknown_of_problem_dof() const = 0;
+};
+
+/// A system that wraps another of the same layout and changes some of its equations: every
+/// call goes to the wrapped system unless the decorator overrides it.
+class SystemDecorator : public NonlinearSystem
+{
+public:
+  explicit SystemDecorator(NonlinearSystem& inner) : _inner(inner) {}
+
+  Vec unknowns() override { return _inner.unknowns(); }
+  void unknowns_changed() override { _inner.unknowns_changed(); }
+  void residual(Vec r) override { _inner.residual(r); }
+  void tangent(Mat A) override { _inner.tangent(A); }
+  Vec create_vector() const override { return _inner.create_vector(); }
+  Mat create_matrix() const override { return _inner.create_matrix(); }
+  bool admissible() const override { return _inner.admissible(); }
+  std::vector<PetscInt> prescribed_rows() const override { return _inner.prescribed_rows(); }
+  void commit() override { _inner.commit(); }
+  void save_history(Vec h) const override { _inner.save_history(h); }
+  void load_history(Vec h) override { _inner.load_history(h); }
+  bool project(Vec x) override { return _inner.project(x); }
+  double step_factor(Vec x, Vec y) override { return _inner.step_factor(x, y); }
+  void configure(SNES snes) const override { _inner.configure(snes); }
+  void set_predicting(bool predicting) override { _inner.set_predicting(predicting); }
+  NonlinearProblem& problem() override { return _inner.problem(); }
+  const std::vector<PetscInt>& unknown_of_problem_dof() const override
+  {
+    return _inner.unknown_of_problem_dof();
+  }
+
+  NonlinearSystem& inner() { return _inner; }
+
+protected:
+  NonlinearSystem& _inner;
 };
 
 } // namespace gelx

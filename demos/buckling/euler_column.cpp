@@ -136,6 +136,22 @@ double EulerColumn::lateral_deflection() const
   return largest / _p.L;
 }
 
+std::array<double, 2> EulerColumn::tip_deflection() const
+{
+  std::array<double, 2> d;
+  for (int c : {0, 1})
+  {
+    const auto [lo, hi] = component_range(*_u, *_box.facet_tags, _box.tag("z_max"), c);
+    d[c] = 0.5 * (lo + hi) / _p.L;
+  }
+  return d;
+}
+
+double EulerColumn::potential_energy() const
+{
+  return assemble_global_scalar(*form(form_column_potential_energy, {}));
+}
+
 double EulerColumn::elastica_load_ratio(double d) const
 {
   // Cantilever elastica: d/L = 2k / K(k) and P/P_cr = (2 K(k) / pi)^2, k = sin(alpha/2) of

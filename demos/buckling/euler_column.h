@@ -76,6 +76,11 @@ public:
 
   /// The largest lateral (x) displacement of the column over L.
   double lateral_deflection() const;
+  /// The lateral displacement (x, y) of the loaded end z = L over L, signed (the middle of its
+  /// range over that face). Collective.
+  std::array<double, 2> tip_deflection() const;
+  /// The potential energy of the elastic column and its dead load. Collective.
+  double potential_energy() const;
 
   /// P / P_cr of the elastica (inextensible Euler-Bernoulli beam) at lateral deflection d/L:
   /// the tip deflection of a cantilever; for clamped ends, each quarter of the column is a

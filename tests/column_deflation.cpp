@@ -28,7 +28,6 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <dolfinx/fem/FunctionSpace.h>
 #include <gelx/deflation.h>
 #include <gelx/petsc_utils.h>
 #include <slepcsys.h>
@@ -78,20 +77,8 @@ int main(int argc, char* argv[])
 
     // The symmetry breakers: lateral displacements (z/L)^2 0.1 tx in x and in y
     auto& problem = column.problem();
-    std::array<gelx::OwnedVec, 2> perturbations;
-    for (int c : {0, 1})
-    {
-      perturbations[c].reset(problem.create_vector());
-      const auto& V = *column.displacement()->function_space();
-      const std::vector<double> X = V.tabulate_dof_coordinates(false);
-      const std::int32_t owned = V.dofmap()->index_map->size_local();
-      PetscScalar* values;
-      VecGetArray(perturbations[c].get(), &values);
-      for (std::int32_t i = 0; i < owned; ++i)
-        for (int k = 0; k < 3; ++k)
-          values[3 * i + k] = k == c ? std::pow(X[3 * i + 2] / p.L, 2) * 0.1 * p.tx : 0.0;
-      VecRestoreArray(perturbations[c].get(), &values);
-    }
+    const std::array<gelx::OwnedVec, 2> perturbations
+        = {column.lateral_perturbation(0, 0.1 * p.tx), column.lateral_perturbation(1, 0.1 * p.tx)};
 
     // Deflated continuation from the straight column at 0.95 P_cr1 to 1.6 P_cr1, in steps
     // refined after each critical load (where the bent branches rise steeply); new branches

@@ -152,6 +152,21 @@ double EulerColumn::potential_energy() const
   return assemble_global_scalar(*form(form_column_potential_energy, {}));
 }
 
+OwnedVec EulerColumn::lateral_perturbation(int axis, double tip) const
+{
+  OwnedVec v(_problem->create_vector());
+  const auto& V = *_u->function_space();
+  const std::vector<double> X = V.tabulate_dof_coordinates(false);
+  const std::int32_t owned = V.dofmap()->index_map->size_local();
+  PetscScalar* values;
+  GELX_PETSC(VecGetArray(v.get(), &values));
+  for (std::int32_t i = 0; i < owned; ++i)
+    for (int k = 0; k < 3; ++k)
+      values[3 * i + k] = k == axis ? std::pow(X[3 * i + 2] / _p.L, 2) * tip : 0.0;
+  GELX_PETSC(VecRestoreArray(v.get(), &values));
+  return v;
+}
+
 double EulerColumn::elastica_load_ratio(double d) const
 {
   // Cantilever elastica: d/L = 2k / K(k) and P/P_cr = (2 K(k) / pi)^2, k = sin(alpha/2) of

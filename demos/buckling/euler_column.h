@@ -10,6 +10,7 @@
 #include <gelx/boundary.h>
 #include <gelx/buckling.h>
 #include <gelx/mesh.h>
+#include <gelx/path.h>
 #include <gelx/problem.h>
 #include <map>
 #include <memory>
@@ -81,6 +82,10 @@ public:
   std::array<double, 2> tip_deflection() const;
   /// The potential energy of the elastic column and its dead load. Collective.
   double potential_energy() const;
+  /// A lateral displacement along `axis` (0: x, 1: y) growing as (z/L)^2 to `tip` at the
+  /// free end, in the layout of problem().create_vector(): it breaks the straight column's
+  /// symmetry (deflation's initial guesses; Newton's step keeps a straight column straight).
+  OwnedVec lateral_perturbation(int axis, double tip) const;
 
   /// P / P_cr of the elastica (inextensible Euler-Bernoulli beam) at lateral deflection d/L:
   /// the tip deflection of a cantilever; for clamped ends, each quarter of the column is a

@@ -4,9 +4,10 @@
 //   ./gelx run buckling
 //   ./gelx run buckling --ends clamped-clamped --nz 80
 //   ./gelx run buckling --np 2 -branch_arclength_snes_monitor
+//   ./gelx run buckling --ty 1.2 --base sliding --diagram true
 //
 // A column of compressible neo-Hookean solid (Eq. 3.1) is compressed along its axis, as the
-// thesis' ABAQUS *BUCKLE / *IMPERFECTION / Riks analyses were. Four analyses:
+// thesis' ABAQUS *BUCKLE / *IMPERFECTION / Riks analyses were. Up to five analyses:
 //  1. linear buckling about the unloaded state (Eq. 1.13, SLEPc): critical loads against
 //     Euler's pi^2 EI/(KL)^2, modes written to XDMF;
 //  2. the perfect column followed by arc-length continuation along its straight path, the
@@ -14,16 +15,20 @@
 //     bifurcation;
 //  3. branch switching there: the continuation leaves along the critical mode and follows the
 //     buckled branch, compared with the elastica;
-//  4. the imperfect column: mode 1 seeded into the geometry with a small amplitude, followed
+//  4. with --diagram: the perfect column's bifurcation diagram by deflated continuation, the
+//     stability of every point from the inertia of its tangent;
+//  5. the imperfect column: mode 1 seeded into the geometry with a small amplitude, followed
 //     from the unloaded state, approaching the same elastica.
 // Load factors are in Euler loads; deflections are the largest lateral displacement over L.
 
 #include "euler_column.h"
 
 #include <gelx/arclength.h>
+#include <gelx/deflation.h>
 #include <gelx/petsc_utils.h>
 #include <gelx/problem.h>
 #include <gelx/program.h>
+#include <algorithm>
 #include <map>
 #include <memory>
 
@@ -36,7 +41,33 @@ struct Analyses
   double imperfection = 0.01; ///< amplitude of the seeded mode 1, over tx
   double max_deflection = 0.3; ///< each path is followed up to this d/L
   int max_steps = 200;       ///< arc-length steps per path
+  bool diagram = false;      ///< the bifurcation diagram by deflated continuation
+  double diagram_max = 1.6;  ///< ... up to this load, in first critical loads
 };
+
+/// The loads of the bifurcation diagram, in Euler loads: steps of 0.05 P_cr1 from 0.95 P_cr1
+/// to `last` P_cr1, none within 1 % of a critical load (a branch's continuation starts there
+/// from a nearly singular tangent), and loads 1 % and 3 % above each critical load in that
+/// range, where the new branches rise steeply (a bent column's deflection grows as the square
+/// root of the load's excess), so that deflation finds them near the straight column.
+std::vector<double> diagram_loads(const std::vector<double>& critical, double last)
+{
+  const double P1 = critical.front();
+  std::vector<double> loads;
+  for (int k = 0; 0.95 + 0.05 * k <= last + 1e-9; ++k)
+  {
+    const double load = (0.95 + 0.05 * k) * P1;
+    if (std::none_of(critical.begin(), critical.end(),
+                     [&](double P) { return std::abs(load / P - 1) < 0.01; }))
+      loads.push_back(load);
+  }
+  for (double P : critical)
+    for (double above : {1.01, 1.03})
+      if (P * above < last * P1)
+        loads.push_back(P * above);
+  std::sort(loads.begin(), loads.end());
+  return loads;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -71,6 +102,14 @@ int main(int argc, char* argv[])
            [](double v) { return v > 0 && v <= 0.35 ? "" : "must be in (0, 0.35]"; });
   prm.bind("analysis", "max_steps", a.max_steps, "largest number of arc-length steps per path",
            gelx::Parameters::at_least_one);
+  prm.bind("geometry", "base", p.base, "the end z = 0: clamped, or sliding (in its plane)",
+           [](const std::string& v)
+           { return v == "clamped" || v == "sliding" ? "" : "must be clamped or sliding"; });
+  prm.bind("analysis", "diagram", a.diagram,
+           "the bifurcation diagram of the perfect column by deflated continuation");
+  prm.bind("analysis", "diagram_max", a.diagram_max,
+           "the diagram's last load, in first critical loads",
+           [](double v) { return v > 1 && v <= 3 ? "" : "must be in (1, 3]"; });
 
   return gelx::run_program(argc, argv, "gelx-buckling", prm, [&](gelx::Run& run)
   {
@@ -196,7 +235,59 @@ int main(int argc, char* argv[])
                  }},
                 [&](const gelx::StepRecord&) { return branch_deflection >= a.max_deflection; });
 
-    // 5. The imperfect column: mode 1 seeded into the geometry, from the unloaded state
+    // 5. The bifurcation diagram of the perfect column by deflated continuation: every branch
+    //    continued from load to load with the others deflated, new branches sought where one
+    //    changes stability, from its previous solution perturbed either way in x and in y
+    //    (Newton keeps a straight column straight); each point's stability is the number of
+    //    negative eigenvalues of its tangent
+    if (a.diagram)
+    {
+      const double diagram_start = run.elapsed();
+      column.displacement()->x()->set(0.0);
+      column.set_load_factor(critical.front() * 0.95);
+      gelx::NewtonSolver straight(run.comm(), "diagram_start_newton_");
+      if (!straight.solve(column.problem()).converged)
+        throw gelx::ConvergenceError("the straight column at 0.95 P_cr did not converge");
+      gelx::OwnedVec start(column.problem().create_vector());
+      GELX_PETSC(VecCopy(column.problem().unknowns(), start.get()));
+      const std::array<gelx::OwnedVec, 2> perturbations
+          = {column.lateral_perturbation(0, 0.1 * p.tx), column.lateral_perturbation(1, 0.1 * p.tx)};
+      gelx::set_default_option("diagram_", "search", "at_bifurcations");
+      gelx::DeflationSolver deflation(run.comm(), column.problem(), "diagram_");
+      std::vector<nlohmann::json> diagram;
+      const auto branches = gelx::deflated_continuation(
+          deflation, diagram_loads(critical, a.diagram_max),
+          [&](double l) { column.set_load_factor(l); }, start.get(),
+          [&](Vec x)
+          {
+            std::vector<gelx::OwnedVec> guesses;
+            for (const auto& perturbation : perturbations)
+              for (double sign : {1.0, -1.0})
+              {
+                guesses.emplace_back(column.problem().create_vector());
+                GELX_PETSC(VecWAXPY(guesses.back().get(), sign, perturbation.get(), x));
+              }
+            return guesses;
+          },
+          [&](const gelx::Branch& branch, const gelx::Equilibrium& point)
+          {
+            column.problem().set_state(point.state.get());
+            const auto tip = column.tip_deflection();
+            diagram.push_back({{"load_over_critical", branch.loads.back() / P_cr},
+                               {"branch", branch.id},
+                               {"tip_x_over_L", tip[0]},
+                               {"tip_y_over_L", tip[1]},
+                               {"potential_energy", column.potential_energy()},
+                               {"negative_eigenvalues", point.negative_eigenvalues},
+                               {"newton_iterations", point.newton.iterations}});
+            results.write_table("diagram.csv", diagram);
+          });
+      run.summary.update({{"diagram_branches", branches.size()},
+                          {"diagram_points", diagram.size()},
+                          {"diagram_time", run.elapsed() - diagram_start}});
+    }
+
+    // 6. The imperfect column: mode 1 seeded into the geometry, from the unloaded state
     gelx::seed_imperfection(*column.mesh().mesh, {modes.at(0)}, {a.imperfection * p.tx});
     column.displacement()->x()->set(0.0);
     column.set_load_factor(0.0);

@@ -47,3 +47,29 @@ ax.grid(alpha=0.3)
 fig.tight_layout()
 fig.savefig(out / "buckling.png", dpi=120)
 print(f"wrote {out / 'buckling.png'}")
+
+# The bifurcation diagram (--diagram true): the tip deflections of every branch against the
+# load, stable points (no negative eigenvalue) joined by solid lines, unstable by dashed ones
+if (out / "diagram.csv").exists():
+    points = list(csv.DictReader(open(out / "diagram.csv")))
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
+    for axis, (ax, column) in enumerate(zip(axes, ["tip_x_over_L", "tip_y_over_L"])):
+        for branch in sorted({int(p["branch"]) for p in points}):
+            pts = [p for p in points if int(p["branch"]) == branch]
+            load = [float(p["load_over_critical"]) for p in pts]
+            tip = [float(p[column]) for p in pts]
+            negative = [int(p["negative_eigenvalues"]) for p in pts]
+            for k in range(len(pts)):
+                style = "-" if negative[k] == 0 else "--"
+                segment = slice(max(k - 1, 0), k + 1)
+                ax.plot(tip[segment], load[segment], style, color=f"C{branch}")
+            ax.plot(tip, load, "o", color=f"C{branch}", ms=3,
+                    label=f"branch {branch}" if axis == 0 else None)
+        ax.set_xlabel(f"tip deflection {'x' if axis == 0 else 'y'} / L")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("P / P_cr1")
+    axes[0].legend(loc="lower left", fontsize=8)
+    fig.suptitle("bifurcation diagram by deflated continuation (solid: stable, dashed: unstable)")
+    fig.tight_layout()
+    fig.savefig(out / "diagram.png", dpi=120)
+    print(f"wrote {out / 'diagram.png'}")

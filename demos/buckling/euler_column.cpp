@@ -27,6 +27,7 @@ EulerColumn::EulerColumn(MPI_Comm comm, ColumnParameters p)
   _constants = {{"G", std::make_shared<fem::Constant<double>>(p.G)},
                 {"K", std::make_shared<fem::Constant<double>>(K)},
                 {"q", _traction},
+                {"rho", std::make_shared<fem::Constant<double>>(p.rho)},
                 {"half_length", std::make_shared<fem::Constant<double>>(p.L / 2)}};
   // The form's ds(2) is the loaded end: the facets of the face z_max, tagged 2
   const std::vector<std::int32_t> top = _box.facet_tags->find(_box.tag("z_max"));
@@ -123,6 +124,17 @@ std::vector<BucklingMode> EulerColumn::buckling_modes(int num_modes)
   _u->x()->set(0.0);
   set_load_factor(0.0);
   return modes;
+}
+
+std::shared_ptr<fem::Form<double>> EulerColumn::mass_form() const
+{
+  auto V = _u->function_space();
+  return form(form_column_mass, {V, V});
+}
+
+double EulerColumn::strain_energy() const
+{
+  return assemble_global_scalar(*form(form_column_strain_energy, {}));
 }
 
 double EulerColumn::lateral_deflection() const

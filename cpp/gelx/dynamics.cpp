@@ -37,38 +37,43 @@ nlohmann::json DynamicsSummary::to_json() const
           {"verdict", quasi_static() ? "quasi-static" : "not quasi-static"}};
 }
 
+nlohmann::json DynamicsRecord::to_json() const
+{
+  return {{"step", step.step},
+          {"time", time},
+          {"amplitude", step.load},
+          {"dt", step.step_size},
+          {"strain_energy", strain_energy},
+          {"kinetic_energy", kinetic_energy},
+          {"dissipated_energy", dissipated_energy},
+          {"kinetic_ratio", kinetic_ratio()},
+          {"dissipation_ratio", dissipation_ratio()},
+          {"iterations", step.newton.iterations},
+          {"rejected", step.cutbacks},
+          {"wall_time", step.wall_time}};
+}
+
 namespace
 {
-struct Context
-{
-  DampedDynamics* dynamics;
-  std::exception_ptr error;
-};
+DampedDynamics& dynamics_of(void* ctx) { return *static_cast<DampedDynamics*>(ctx); }
 
 PetscErrorCode form_function(TS, PetscReal t, Vec u, Vec u_dot, Vec F, void* ctx)
 {
-  auto& c = *static_cast<Context*>(ctx);
-  return guarded_callback(c.error, [&] { c.dynamics->form_function(t, u, u_dot, F); });
+  DampedDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.form_function(t, u, u_dot, F); });
 }
 
 PetscErrorCode form_jacobian(TS, PetscReal t, Vec u, Vec, PetscReal shift, Mat, Mat P,
                              void* ctx)
 {
-  auto& c = *static_cast<Context*>(ctx);
-  return guarded_callback(c.error, [&] { c.dynamics->form_jacobian(t, u, shift, P); });
+  DampedDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.form_jacobian(t, u, shift, P); });
 }
 
 PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec u, void* ctx)
 {
-  auto& c = *static_cast<Context*>(ctx);
-  return guarded_callback(c.error, [&] { c.dynamics->accepted(int(step), t, u); });
-}
-
-Context& context_of(TS ts)
-{
-  void* ctx = nullptr;
-  GELX_PETSC(TSGetIFunction(ts, nullptr, nullptr, &ctx));
-  return *static_cast<Context*>(ctx);
+  DampedDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.accepted(int(step), t, u); });
 }
 
 double positive_option(const std::string& prefix, const std::string& name, double fallback,
@@ -162,22 +167,17 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSCreate(comm, &_ts));
   GELX_PETSC(TSSetOptionsPrefix(_ts, prefix.c_str()));
   GELX_PETSC(TSSetProblemType(_ts, TS_NONLINEAR));
-  auto* context = new Context{this, nullptr};
   Vec r = system.create_vector();
-  GELX_PETSC(TSSetIFunction(_ts, r, gelx::form_function, context));
+  GELX_PETSC(TSSetIFunction(_ts, r, gelx::form_function, this));
   GELX_PETSC(VecDestroy(&r));
-  GELX_PETSC(TSSetIJacobian(_ts, _jacobian, _jacobian, gelx::form_jacobian, context));
-  GELX_PETSC(TSMonitorSet(_ts, monitor, context, nullptr));
+  GELX_PETSC(TSSetIJacobian(_ts, _jacobian, _jacobian, gelx::form_jacobian, this));
+  GELX_PETSC(TSMonitorSet(_ts, monitor, this, nullptr));
   GELX_PETSC(TSSetFromOptions(_ts));
 }
 
 DampedDynamics::~DampedDynamics()
 {
-  if (_ts)
-  {
-    delete &context_of(_ts);
-    TSDestroy(&_ts);
-  }
+  TSDestroy(&_ts);
   MatDestroy(&_mass);
   MatDestroy(&_damped);
   MatDestroy(&_jacobian);
@@ -330,12 +330,11 @@ DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observe
   GELX_PETSC(VecCopy(_system.unknowns(), x.get()));
   GELX_PETSC(TSSetTime(_ts, 0.0));
   GELX_PETSC(TSSetStepNumber(_ts, 0));
-  Context& context = context_of(_ts);
-  context.error = nullptr;
+  callback_error = nullptr;
   const PetscErrorCode ierr = TSSolve(_ts, x.get());
   _observers = nullptr;
-  if (context.error)
-    std::rethrow_exception(context.error);
+  if (callback_error)
+    std::rethrow_exception(callback_error);
   GELX_PETSC(ierr);
   TSConvergedReason reason;
   GELX_PETSC(TSGetConvergedReason(_ts, &reason));

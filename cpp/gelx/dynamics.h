@@ -7,6 +7,7 @@
 #include "system.h"
 
 #include <dolfinx/fem/Form.h>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <mpi.h>
@@ -39,6 +40,9 @@ struct DynamicsRecord
   /// KE / SE and ED / SE (NaN while SE = 0)
   double kinetic_ratio() const { return kinetic_energy / strain_energy; }
   double dissipation_ratio() const { return dissipated_energy / strain_energy; }
+  /// A row of steps.csv: step, time, amplitude, dt, the energies and ratios, iterations,
+  /// rejected steps, wall time.
+  nlohmann::json to_json() const;
 };
 
 using DynamicsObserver = std::function<void(const DynamicsRecord&)>;
@@ -97,7 +101,9 @@ struct DynamicsSummary
 /// ts_max_steps 10000), -PREFIX_snes_*, -PREFIX_ksp_* and -PREFIX_pc_* (a direct solve).
 ///
 /// The velocity of the records is the derivative at t_n of the polynomial through the last
-/// three accepted states (two on the first step), the derivative BDF2 itself uses.
+/// three accepted states (two on the first step), the derivative BDF2 itself uses. The
+/// energies obey the model's balance W = SE + ED (W the work of the loads and of the prescribed
+/// motions); KE is no term of it, since the model has no inertia.
 /// The system's unknowns must be its problem's (no decorator that changes the layout), and
 /// commit() is called once per accepted step, not per Newton iteration.
 class DampedDynamics
@@ -119,6 +125,8 @@ public:
   /// last accepted state.
   DynamicsSummary run(const std::vector<DynamicsObserver>& observers);
 
+  /// The run's summary so far (complete after run()).
+  const DynamicsSummary& summary() const { return _summary; }
   double loading_time() const { return _loading_time; }
   double damping() const { return _damping; }
   TS ts() const { return _ts; }
@@ -128,6 +136,8 @@ public:
   void form_jacobian(double t, Vec u, double shift, Mat P);
   /// Energies and observers after an accepted step.
   void accepted(int step, double t, Vec u);
+  /// An exception a callback raised, rethrown by run() after TSSolve returns
+  std::exception_ptr callback_error;
 
 private:
   void set_time(double t);

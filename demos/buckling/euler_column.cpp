@@ -13,6 +13,28 @@ using namespace dolfinx;
 namespace gelx::scenes
 {
 
+void ColumnParameters::bind(Parameters& prm)
+{
+  prm.bind("geometry", "tx", tx, "cross-section width (the buckling direction)",
+           Parameters::positive);
+  prm.bind("geometry", "ty", ty, "cross-section depth (> tx)", Parameters::positive);
+  prm.bind("geometry", "L", L, "length", Parameters::positive);
+  prm.bind("geometry", "nx", cells[0], "box cells across tx", Parameters::at_least_one);
+  prm.bind("geometry", "ny", cells[1], "box cells across ty", Parameters::at_least_one);
+  prm.bind("geometry", "nz", cells[2], "box cells along L", Parameters::at_least_one);
+  prm.bind("geometry", "ends", ends, "clamped-free or clamped-clamped",
+           [](const std::string& v)
+           {
+             return v == "clamped-free" || v == "clamped-clamped"
+                        ? ""
+                        : "must be clamped-free or clamped-clamped";
+           });
+  prm.bind("material", "G", G, "shear modulus", Parameters::positive);
+  prm.bind("material", "nu", nu, "Poisson's ratio",
+           [](double v) { return v > -1 && v < 0.5 ? "" : "must be in (-1, 0.5)"; });
+  prm.bind("material", "rho", rho, "mass density (dynamics)", Parameters::positive);
+}
+
 EulerColumn::EulerColumn(MPI_Comm comm, ColumnParameters p)
     : _p(p), _box(box_mesh(comm, {p.tx, p.ty, p.L},
                                         {std::size_t(p.cells[0]), std::size_t(p.cells[1]),

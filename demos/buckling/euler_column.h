@@ -10,6 +10,7 @@
 #include <gelx/boundary.h>
 #include <gelx/buckling.h>
 #include <gelx/mesh.h>
+#include <gelx/parameters.h>
 #include <gelx/problem.h>
 #include <map>
 #include <memory>
@@ -40,6 +41,9 @@ struct ColumnParameters
   /// against rotation.
   std::string base = "clamped";
   bool clamped_clamped() const { return ends == "clamped-clamped"; }
+  /// Bind the members to scene parameters (sections "geometry" and "material"), the current
+  /// values as their defaults.
+  void bind(Parameters& prm);
 };
 
 /// The column on [0, tx] x [0, ty] x [0, L], clamped at z = 0.

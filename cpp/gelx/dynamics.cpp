@@ -25,6 +25,7 @@ nlohmann::json DynamicsSummary::to_json() const
 {
   return {{"steps", steps},
           {"rejected_steps", rejected_steps},
+          {"failed_solves", failed_solves},
           {"time", time},
           {"strain_energy", strain_energy},
           {"kinetic_energy", kinetic_energy},
@@ -81,7 +82,8 @@ double positive_option(const std::string& prefix, const std::string& name, doubl
 {
   const double value = real_option(prefix, name, fallback);
   if (!(value > 0 || (zero_allowed && value == 0)))
-    throw InputError("-" + prefix + name + " must be " + (zero_allowed ? "non-negative" : "positive"));
+    throw InputError("-" + prefix + name + " must be "
+                     + (zero_allowed ? "non-negative" : "positive"));
   return value;
 }
 
@@ -109,8 +111,9 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
 {
   // The mass form lives on the problem's space: the system must keep the problem's layout
   const auto& of_problem = system.unknown_of_problem_dof();
-  const bool same_layout = std::all_of(of_problem.begin(), of_problem.end(),
-                                       [&, i = PetscInt(0)](PetscInt k) mutable { return k == i++; });
+  const bool same_layout
+      = std::all_of(of_problem.begin(), of_problem.end(),
+                    [i = PetscInt(0)](PetscInt k) mutable { return k == i++; });
   PetscInt n_local;
   Vec x = system.unknowns();
   GELX_PETSC(VecGetLocalSize(x, &n_local));
@@ -288,6 +291,9 @@ void DampedDynamics::accepted(int step, double t, Vec u)
 
     _summary.steps = step;
     _summary.rejected_steps = rejections;
+    PetscInt failed_solves;
+    GELX_PETSC(TSGetSNESFailures(_ts, &failed_solves));
+    _summary.failed_solves = failed_solves;
     _summary.time = t;
     _summary.strain_energy = record.strain_energy;
     _summary.kinetic_energy = record.kinetic_energy;

@@ -51,7 +51,8 @@ using DynamicsObserver = std::function<void(const DynamicsRecord&)>;
 struct DynamicsSummary
 {
   int steps = 0;
-  int rejected_steps = 0;
+  int rejected_steps = 0; ///< steps TS rejected (error estimate or failed Newton solve)
+  int failed_solves = 0;  ///< stages whose Newton solve failed (inadmissible states included)
   double time = 0;
   double strain_energy = 0;
   double kinetic_energy = 0;

@@ -74,11 +74,11 @@ ImperfectColumn imperfect_column(MPI_Comm comm)
 /// A system that declares the first `failures` states it is asked about after the load
 /// passed `armed_from` of its amplitude inadmissible, as if det F <= 0 there, and is otherwise
 /// `inner`: to see the dynamics reject such a stage and retry it with a smaller step.
-class InadmissibleOnce : public gelx::NonlinearSystem
+class InadmissibleOnce : public gelx::SystemDecorator
 {
 public:
   InadmissibleOnce(gelx::NonlinearSystem& inner, int failures)
-      : _inner(inner), _failures(failures)
+      : SystemDecorator(inner), _failures(failures)
   {
   }
   void arm(bool armed) { _armed = armed; }
@@ -93,21 +93,8 @@ public:
     }
     return _inner.admissible();
   }
-  Vec unknowns() override { return _inner.unknowns(); }
-  void unknowns_changed() override { _inner.unknowns_changed(); }
-  void residual(Vec r) override { _inner.residual(r); }
-  void tangent(Mat A) override { _inner.tangent(A); }
-  Vec create_vector() const override { return _inner.create_vector(); }
-  Mat create_matrix() const override { return _inner.create_matrix(); }
-  std::vector<PetscInt> prescribed_rows() const override { return _inner.prescribed_rows(); }
-  gelx::NonlinearProblem& problem() override { return _inner.problem(); }
-  const std::vector<PetscInt>& unknown_of_problem_dof() const override
-  {
-    return _inner.unknown_of_problem_dof();
-  }
 
 private:
-  gelx::NonlinearSystem& _inner;
   int _failures;
   bool _armed = false;
   mutable int _injected = 0;

@@ -78,10 +78,10 @@ struct DynamicsSummary
 /// the regularisation meant for quasi-static problems with instabilities. Its solutions are
 /// the equilibria wherever the path is stable (the viscous forces vanish as u' -> 0), and where
 /// an equilibrium is lost (a snap, an unstable bifurcated state) it moves to a stable one
-/// along a gradient-flow-like path, dissipating the energy released: exactly the quasi-static
-/// answer, with none of the second-order inertia that would make a generalised-alpha run ring
-/// around the new state (and need a damping tuned against the lowest frequencies, and steps
-/// resolving them, before settling). Its time integrators are the stiff, L-stable BDFs,
+/// along a gradient-flow-like path, dissipating the energy released: the quasi-static answer
+/// (ED / SE says how far), with none of the second-order inertia that would make a
+/// generalised-alpha run ring around the new state (and need a damping tuned against the
+/// lowest frequencies, and steps resolving them, before settling). Its time integrators are the stiff, L-stable BDFs,
 /// whose step grows freely along the slow parts of a path; their error estimate drives the
 /// step with `-PREFIX_ts_adapt_type basic`. The kinetic energy is that of the body moving at
 /// the regularised velocity with its density rho: a diagnostic (ABAQUS' ALLKE), not a state
@@ -106,7 +106,10 @@ struct DynamicsSummary
 /// energies obey the model's balance W = SE + ED (W the work of the loads and of the prescribed
 /// motions); KE is no term of it, since the model has no inertia.
 /// The system's unknowns must be its problem's (no decorator that changes the layout), and
-/// commit() is called once per accepted step, not per Newton iteration.
+/// commit() is called once per accepted step, not per Newton iteration (a contact active set
+/// moves once per step). No restart yet: TSBDF's history (the previous states) cannot be
+/// handed back to PETSc, so a continued run would restart at order 1 and leave the
+/// uninterrupted path at the time-integration tolerance.
 class DampedDynamics
 {
 public:

@@ -81,11 +81,11 @@ struct DynamicsSummary
 /// along a gradient-flow-like path, dissipating the energy released: the quasi-static answer
 /// (ED / SE says how far), with none of the second-order inertia that would make a
 /// generalised-alpha run ring around the new state (and need a damping tuned against the
-/// lowest frequencies, and steps resolving them, before settling). Its time integrators are the stiff, L-stable BDFs,
-/// whose step grows freely along the slow parts of a path; their error estimate drives the
-/// step with `-PREFIX_ts_adapt_type basic`. The kinetic energy is that of the body moving at
-/// the regularised velocity with its density rho: a diagnostic (ABAQUS' ALLKE), not a state
-/// variable of the model.
+/// lowest frequencies, and steps resolving them, before settling). Its time integrators are
+/// the stiff, L-stable BDFs, whose step grows freely along the slow parts of a path; their
+/// error estimate drives the step with `-PREFIX_ts_adapt_type basic`. The kinetic energy is
+/// that of the body moving at the regularised velocity with its density rho: a diagnostic
+/// (ABAQUS' ALLKE), not a state variable of the model.
 ///
 /// TS set-up: IFunction F(t, u, u') = c M_D u' + R(u; t), IJacobian shift c M_D + K, with M_D
 /// the mass matrix with the prescribed rows (NonlinearSystem::prescribed_rows) zeroed, so

@@ -16,6 +16,7 @@ u = ufl.Coefficient(V)
 G = ufl.Constant(mesh)
 K = ufl.Constant(mesh)
 q = ufl.Constant(mesh)  # axial traction on the top end (compressive when positive)
+rho = ufl.Constant(mesh)  # mass density (damped dynamics)
 
 F = materials.deformation_gradient(u)
 psi = materials.neo_hookean_compressible(F, G, K)
@@ -25,6 +26,9 @@ v = ufl.TestFunction(V)
 residual = ufl.derivative(psi * dx, u, v) + q * v[2] * ds(2)
 potential_energy = psi * dx + q * u[2] * ds(2)  # the residual is its derivative
 tangent = ufl.derivative(residual, u, ufl.TrialFunction(V))
+# Damped dynamics (gelx::DampedDynamics): the consistent mass and the stored (strain) energy
+mass = rho * ufl.inner(ufl.TrialFunction(V), v) * dx
+strain_energy = psi * dx
 
 # Symmetry of the lateral deflection v_x of a mode about z = L/2
 mode = ufl.Coefficient(V)
@@ -36,5 +40,6 @@ mode_even_scale = abs(mode[0]) * dx
 
 det_F = ufl.det(F)  # admissibility: det F > 0
 
-forms = [residual, tangent, potential_energy, mode_odd_part, mode_odd_scale, mode_even_part, mode_even_scale]
+forms = [residual, tangent, potential_energy, mass, strain_energy, mode_odd_part, mode_odd_scale,
+         mode_even_part, mode_even_scale]
 expressions = [(det_F, materials.quadrature_points(cell, materials.quadrature_degree(degree)))]

@@ -10,23 +10,6 @@ namespace
 {
 using Progress = NewtonSolver::Progress;
 
-/// Run a callback body for PETSc: an exception becomes an error code (PETSc is C and must not
-/// be unwound through); NewtonSolver::solve rethrows it.
-template <typename Body>
-PetscErrorCode guarded(std::exception_ptr& error, Body&& body)
-{
-  try
-  {
-    body();
-    return 0;
-  }
-  catch (...)
-  {
-    error = std::current_exception();
-    return PETSC_ERR_USER;
-  }
-}
-
 struct Context
 {
   Progress* progress;
@@ -43,7 +26,7 @@ Context& context_of(SNES snes)
 PetscErrorCode form_residual(SNES snes, Vec x, Vec r, void* ctx)
 {
   auto& c = *static_cast<Context*>(ctx);
-  return guarded(c.error,
+  return guarded_callback(c.error,
                  [&]
                  {
                    c.progress->system->set_state(x);
@@ -57,7 +40,7 @@ PetscErrorCode form_residual(SNES snes, Vec x, Vec r, void* ctx)
 PetscErrorCode form_tangent(SNES, Vec x, Mat, Mat P, void* ctx)
 {
   auto& c = *static_cast<Context*>(ctx);
-  return guarded(c.error,
+  return guarded_callback(c.error,
                  [&]
                  {
                    c.progress->system->set_state(x);
@@ -69,7 +52,7 @@ PetscErrorCode form_tangent(SNES, Vec x, Mat, Mat P, void* ctx)
 PetscErrorCode commit_iterate(SNES snes, PetscInt)
 {
   auto& c = context_of(snes);
-  return guarded(c.error, [&] { c.progress->system->commit(); });
+  return guarded_callback(c.error, [&] { c.progress->system->commit(); });
 }
 
 /// Line-search pre-check: scale the step -Y by the system's factor (NonlinearSystem::
@@ -77,7 +60,7 @@ PetscErrorCode commit_iterate(SNES snes, PetscInt)
 PetscErrorCode admissible_step(SNESLineSearch, Vec X, Vec Y, PetscBool* changed, void* ctx)
 {
   auto& c = *static_cast<Context*>(ctx);
-  return guarded(c.error,
+  return guarded_callback(c.error,
                  [&]
                  {
                    Progress& p = *c.progress;
@@ -106,7 +89,7 @@ PetscErrorCode count_reduction(SNESLineSearch, Vec, Vec Y, Vec W, PetscBool* cha
                                PetscBool* changed_w, void* ctx)
 {
   auto& c = *static_cast<Context*>(ctx);
-  return guarded(c.error,
+  return guarded_callback(c.error,
                  [&]
                  {
                    *changed_y = *changed_w = PETSC_FALSE;
@@ -148,7 +131,7 @@ PetscErrorCode converged(SNES snes, PetscInt it, PetscReal, PetscReal, PetscReal
                          SNESConvergedReason* reason, void* ctx)
 {
   auto& c = *static_cast<Context*>(ctx);
-  return guarded(
+  return guarded_callback(
       c.error,
       [&]
       {

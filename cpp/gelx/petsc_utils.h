@@ -3,6 +3,7 @@
 /// PETSc error codes as exceptions, and defaults in the options database that never override
 /// what the user passed.
 
+#include <exception>
 #include <petscksp.h>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,24 @@ void petsc_check(PetscErrorCode ierr, const char* call);
 
 /// Wrap a PETSc call: GELX_PETSC(VecNorm(x, NORM_2, &n));
 #define GELX_PETSC(call) ::gelx::petsc_check((call), #call)
+
+/// Run the body of a PETSc callback: PETSc is C and must not be unwound through, so an
+/// exception becomes an error code and is kept in `error` for the caller of the PETSc solve
+/// to rethrow.
+template <typename Body>
+PetscErrorCode guarded_callback(std::exception_ptr& error, Body&& body)
+{
+  try
+  {
+    body();
+    return 0;
+  }
+  catch (...)
+  {
+    error = std::current_exception();
+    return PETSC_ERR_USER;
+  }
+}
 
 /// Set option `-<prefix><name>` to `value` unless it is already set (on the command line,
 /// in PETSC_OPTIONS or an options file), so that scene defaults never override the user.

@@ -13,6 +13,30 @@ using namespace dolfinx;
 namespace gelx::scenes
 {
 
+void ColumnParameters::bind(Parameters& prm)
+{
+  prm.bind("geometry", "tx", tx, "cross-section width (the buckling direction)",
+           Parameters::positive);
+  prm.bind("geometry", "ty", ty, "cross-section depth (> tx)", Parameters::positive);
+  prm.bind("geometry", "L", L, "length", Parameters::positive);
+  prm.bind("geometry", "nx", cells[0], "box cells across tx", Parameters::at_least_one);
+  prm.bind("geometry", "ny", cells[1], "box cells across ty", Parameters::at_least_one);
+  prm.bind("geometry", "nz", cells[2], "box cells along L", Parameters::at_least_one);
+  prm.bind("geometry", "ends", ends, "clamped-free or clamped-clamped",
+           [](const std::string& v)
+           {
+             return v == "clamped-free" || v == "clamped-clamped"
+                        ? ""
+                        : "must be clamped-free or clamped-clamped";
+           });
+  prm.bind("geometry", "base", base, "the end z = 0: clamped, or sliding (in its plane)",
+           [](const std::string& v)
+           { return v == "clamped" || v == "sliding" ? "" : "must be clamped or sliding"; });
+  prm.bind("material", "G", G, "shear modulus", Parameters::positive);
+  prm.bind("material", "nu", nu, "Poisson's ratio",
+           [](double v) { return v > -1 && v < 0.5 ? "" : "must be in (-1, 0.5)"; });
+}
+
 EulerColumn::EulerColumn(MPI_Comm comm, ColumnParameters p)
     : _p(p), _box(box_mesh(comm, {p.tx, p.ty, p.L},
                                         {std::size_t(p.cells[0]), std::size_t(p.cells[1]),
@@ -27,6 +51,7 @@ EulerColumn::EulerColumn(MPI_Comm comm, ColumnParameters p)
   _constants = {{"G", std::make_shared<fem::Constant<double>>(p.G)},
                 {"K", std::make_shared<fem::Constant<double>>(K)},
                 {"q", _traction},
+                {"rho", std::make_shared<fem::Constant<double>>(p.rho)},
                 {"half_length", std::make_shared<fem::Constant<double>>(p.L / 2)}};
   // The form's ds(2) is the loaded end: the facets of the face z_max, tagged 2
   const std::vector<std::int32_t> top = _box.facet_tags->find(_box.tag("z_max"));
@@ -123,6 +148,17 @@ std::vector<BucklingMode> EulerColumn::buckling_modes(int num_modes)
   _u->x()->set(0.0);
   set_load_factor(0.0);
   return modes;
+}
+
+std::shared_ptr<fem::Form<double>> EulerColumn::mass_form() const
+{
+  auto V = _u->function_space();
+  return form(form_column_mass, {V, V});
+}
+
+double EulerColumn::strain_energy() const
+{
+  return assemble_global_scalar(*form(form_column_strain_energy, {}));
 }
 
 double EulerColumn::lateral_deflection() const

@@ -10,6 +10,7 @@
 #include <gelx/boundary.h>
 #include <gelx/buckling.h>
 #include <gelx/mesh.h>
+#include <gelx/parameters.h>
 #include <gelx/path.h>
 #include <gelx/problem.h>
 #include <map>
@@ -30,6 +31,7 @@ struct ColumnParameters
   std::array<int, 3> cells{2, 3, 40}; ///< box cells along x, y, z (six tetrahedra each)
   double G = 1.0;   ///< shear modulus
   double nu = 0.3;  ///< Poisson's ratio (bulk modulus K = 2G(1 + nu)/(3(1 - 2nu)))
+  double rho = 1.0; ///< mass density (damped dynamics only)
   std::string ends = "clamped-free"; ///< or "clamped-clamped"
   /// "clamped" (u = 0) or "sliding": the end z = 0 slides in its plane (u_z = 0; u_x = 0 on
   /// its mid-line x = tx/2 and u_y = 0 on y = ty/2 pin the rigid motions), so that its
@@ -40,6 +42,9 @@ struct ColumnParameters
   /// against rotation.
   std::string base = "clamped";
   bool clamped_clamped() const { return ends == "clamped-clamped"; }
+  /// Bind the members but rho to scene parameters (sections "geometry" and "material"), the
+  /// current values as their defaults.
+  void bind(Parameters& prm);
 };
 
 /// The column on [0, tx] x [0, ty] x [0, L], clamped at z = 0.
@@ -74,6 +79,11 @@ public:
   /// Linear buckling about the unloaded state (thesis Eq. 1.13, gelx::LinearBuckling): the
   /// `num_modes` lowest modes, their load factors in Euler loads. Leaves the column unloaded.
   std::vector<BucklingMode> buckling_modes(int num_modes);
+
+  /// The consistent mass matrix's form, rho inner(du, v) dx (gelx::DampedDynamics).
+  std::shared_ptr<dolfinx::fem::Form<double>> mass_form() const;
+  /// The strain energy stored in the column now, int psi dx. Collective.
+  double strain_energy() const;
 
   /// The largest lateral (x) displacement of the column over L.
   double lateral_deflection() const;

@@ -76,23 +76,7 @@ int main(int argc, char* argv[])
   gelx::scenes::ColumnParameters p;
   Analyses a;
   gelx::Parameters prm;
-  prm.bind("geometry", "tx", p.tx, "cross-section width (the buckling direction)",
-           gelx::Parameters::positive);
-  prm.bind("geometry", "ty", p.ty, "cross-section depth (> tx)", gelx::Parameters::positive);
-  prm.bind("geometry", "L", p.L, "length", gelx::Parameters::positive);
-  prm.bind("geometry", "nx", p.cells[0], "box cells across tx", gelx::Parameters::at_least_one);
-  prm.bind("geometry", "ny", p.cells[1], "box cells across ty", gelx::Parameters::at_least_one);
-  prm.bind("geometry", "nz", p.cells[2], "box cells along L", gelx::Parameters::at_least_one);
-  prm.bind("geometry", "ends", p.ends, "clamped-free or clamped-clamped",
-           [](const std::string& v)
-           {
-             return v == "clamped-free" || v == "clamped-clamped"
-                        ? ""
-                        : "must be clamped-free or clamped-clamped";
-           });
-  prm.bind("material", "G", p.G, "shear modulus", gelx::Parameters::positive);
-  prm.bind("material", "nu", p.nu, "Poisson's ratio",
-           [](double v) { return v > -1 && v < 0.5 ? "" : "must be in (-1, 0.5)"; });
+  p.bind(prm);
   prm.bind("analysis", "modes", a.modes, "buckling modes to compute",
            gelx::Parameters::at_least_one);
   prm.bind("analysis", "imperfection", a.imperfection, "amplitude of the seeded mode 1, over tx",
@@ -102,9 +86,6 @@ int main(int argc, char* argv[])
            [](double v) { return v > 0 && v <= 0.35 ? "" : "must be in (0, 0.35]"; });
   prm.bind("analysis", "max_steps", a.max_steps, "largest number of arc-length steps per path",
            gelx::Parameters::at_least_one);
-  prm.bind("geometry", "base", p.base, "the end z = 0: clamped, or sliding (in its plane)",
-           [](const std::string& v)
-           { return v == "clamped" || v == "sliding" ? "" : "must be clamped or sliding"; });
   prm.bind("analysis", "diagram", a.diagram,
            "the bifurcation diagram of the perfect column by deflated continuation");
   prm.bind("analysis", "diagram_max", a.diagram_max,

@@ -1,0 +1,361 @@
+#include "dynamics.h"
+#include "parameters.h"
+#include "petsc_utils.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <dolfinx/common/MPI.h>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/la/petsc.h>
+#include <exception>
+#include <sstream>
+
+namespace gelx
+{
+
+double smooth_step(double t, double loading_time)
+{
+  const double s = std::clamp(t / loading_time, 0.0, 1.0);
+  return s * s * s * (10 - 15 * s + 6 * s * s);
+}
+
+nlohmann::json DynamicsSummary::to_json() const
+{
+  return {{"steps", steps},
+          {"rejected_steps", rejected_steps},
+          {"failed_solves", failed_solves},
+          {"time", time},
+          {"strain_energy", strain_energy},
+          {"kinetic_energy", kinetic_energy},
+          {"dissipated_energy", dissipated_energy},
+          {"dissipation_ratio", dissipation_ratio},
+          {"dissipation_bound", dissipation_bound},
+          {"kinetic_ratio", kinetic_ratio},
+          {"kinetic_bound", kinetic_bound},
+          {"quasi_static", quasi_static()},
+          {"verdict", quasi_static() ? "quasi-static" : "not quasi-static"}};
+}
+
+nlohmann::json DynamicsRecord::to_json() const
+{
+  return {{"step", step.step},
+          {"time", time},
+          {"amplitude", step.load},
+          {"dt", step.step_size},
+          {"strain_energy", strain_energy},
+          {"kinetic_energy", kinetic_energy},
+          {"dissipated_energy", dissipated_energy},
+          {"kinetic_ratio", kinetic_ratio()},
+          {"dissipation_ratio", dissipation_ratio()},
+          {"iterations", step.newton.iterations},
+          {"rejected", step.cutbacks},
+          {"wall_time", step.wall_time}};
+}
+
+namespace
+{
+DampedDynamics& dynamics_of(void* ctx) { return *static_cast<DampedDynamics*>(ctx); }
+
+PetscErrorCode form_function(TS, PetscReal t, Vec u, Vec u_dot, Vec F, void* ctx)
+{
+  DampedDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.form_function(t, u, u_dot, F); });
+}
+
+PetscErrorCode form_jacobian(TS, PetscReal t, Vec u, Vec, PetscReal shift, Mat, Mat P,
+                             void* ctx)
+{
+  DampedDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.form_jacobian(t, u, shift, P); });
+}
+
+PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec u, void* ctx)
+{
+  DampedDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.accepted(int(step), t, u); });
+}
+
+double positive_option(const std::string& prefix, const std::string& name, double fallback,
+                       bool zero_allowed = false)
+{
+  const double value = real_option(prefix, name, fallback);
+  if (!(value > 0 || (zero_allowed && value == 0)))
+    throw InputError("-" + prefix + name + " must be "
+                     + (zero_allowed ? "non-negative" : "positive"));
+  return value;
+}
+
+/// v^T A v. Collective.
+double quadratic_form(Mat A, Vec v, Vec work)
+{
+  GELX_PETSC(MatMult(A, v, work));
+  PetscScalar value;
+  GELX_PETSC(VecDot(v, work, &value));
+  return value;
+}
+} // namespace
+
+DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
+                               const dolfinx::fem::Form<double>& mass_form,
+                               std::function<double()> strain_energy,
+                               std::function<void(double)> apply_load, const std::string& prefix)
+    : _comm(comm), _system(system), _strain_energy(std::move(strain_energy)),
+      _apply_load(std::move(apply_load)), _prefix(prefix),
+      _loading_time(positive_option(prefix, "loading_time", 1.0)),
+      _hold_time(positive_option(prefix, "hold_time", 0.0, true)),
+      _damping(positive_option(prefix, "damping", 1.0)),
+      _dissipation_bound(positive_option(prefix, "dissipation_bound", 0.05)),
+      _kinetic_bound(positive_option(prefix, "kinetic_bound", 0.05))
+{
+  // The mass form lives on the problem's space: the system must keep the problem's layout
+  const auto& of_problem = system.unknown_of_problem_dof();
+  const bool same_layout
+      = std::all_of(of_problem.begin(), of_problem.end(),
+                    [i = PetscInt(0)](PetscInt k) mutable { return k == i++; });
+  PetscInt n_local;
+  Vec x = system.unknowns();
+  GELX_PETSC(VecGetLocalSize(x, &n_local));
+  if (!same_layout || PetscInt(of_problem.size()) != n_local)
+    throw std::invalid_argument("DampedDynamics needs a system whose unknowns are its "
+                                "problem's (no reduced or bordered system)");
+
+  // M (for the energies), and c M_D: M with the prescribed rows zeroed (for F and J). Both
+  // in the tangent's sparsity (the same space and cells), so that J = K + shift c M_D adds
+  // entry by entry
+  _mass = system.create_matrix();
+  GELX_PETSC(MatZeroEntries(_mass));
+  dolfinx::fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(_mass, ADD_VALUES),
+                                mass_form, {});
+  GELX_PETSC(MatAssemblyBegin(_mass, MAT_FINAL_ASSEMBLY));
+  GELX_PETSC(MatAssemblyEnd(_mass, MAT_FINAL_ASSEMBLY));
+  GELX_PETSC(MatDuplicate(_mass, MAT_COPY_VALUES, &_damped));
+  GELX_PETSC(MatScale(_damped, _damping));
+  GELX_PETSC(MatSetOption(_damped, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+  PetscInt first_row;
+  GELX_PETSC(MatGetOwnershipRange(_damped, &first_row, nullptr));
+  std::vector<PetscInt> rows = system.prescribed_rows();
+  for (PetscInt& r : rows)
+    r += first_row;
+  GELX_PETSC(MatZeroRows(_damped, PetscInt(rows.size()), rows.data(), 0.0, nullptr, nullptr));
+  _jacobian = system.create_matrix();
+  _velocity = system.create_vector();
+
+  // Defaults (the user's options win), then TS, SNES and KSP from the options database
+  const auto number = [](double v)
+  {
+    std::ostringstream s;
+    s.precision(17);
+    s << v;
+    return s.str();
+  };
+  set_default_option(prefix, "ts_type", "bdf");
+  set_default_option(prefix, "ts_bdf_order", "2");
+  set_default_option(prefix, "ts_adapt_type", "basic");
+  set_default_option(prefix, "ts_adapt_dt_max", number(_loading_time / 10));
+  set_default_option(prefix, "ts_dt", number(real_option(prefix, "dt", _loading_time / 50)));
+  set_default_option(prefix, "ts_max_time", number(_loading_time + _hold_time));
+  set_default_option(prefix, "ts_exact_final_time", "matchstep");
+  // A failed Newton solve is no failure of the run: TS retries with a smaller step
+  set_default_option(prefix, "ts_max_snes_failures", "-1");
+  set_default_option(prefix, "ts_max_reject", "20");
+  set_default_option(prefix, "ts_max_steps", "10000");
+  // Full Newton steps, few of them: where they fail, the smaller time step TS takes then is
+  // the globalisation (its predictor starts closer), not a line search
+  set_default_option(prefix, "snes_linesearch_type", "basic");
+  set_default_option(prefix, "snes_max_it", "10");
+  default_to_direct_solver(prefix);
+
+  GELX_PETSC(TSCreate(comm, &_ts));
+  GELX_PETSC(TSSetOptionsPrefix(_ts, prefix.c_str()));
+  GELX_PETSC(TSSetProblemType(_ts, TS_NONLINEAR));
+  Vec r = system.create_vector();
+  GELX_PETSC(TSSetIFunction(_ts, r, gelx::form_function, this));
+  GELX_PETSC(VecDestroy(&r));
+  GELX_PETSC(TSSetIJacobian(_ts, _jacobian, _jacobian, gelx::form_jacobian, this));
+  GELX_PETSC(TSMonitorSet(_ts, monitor, this, nullptr));
+  GELX_PETSC(TSSetFromOptions(_ts));
+}
+
+DampedDynamics::~DampedDynamics()
+{
+  TSDestroy(&_ts);
+  MatDestroy(&_mass);
+  MatDestroy(&_damped);
+  MatDestroy(&_jacobian);
+  VecDestroy(&_velocity);
+}
+
+void DampedDynamics::set_time(double t) { _apply_load(smooth_step(t, _loading_time)); }
+
+void DampedDynamics::form_function(double t, Vec u, Vec u_dot, Vec F)
+{
+  set_time(t);
+  _system.set_state(u);
+  if (!_system.admissible())
+  {
+    SNES snes;
+    GELX_PETSC(TSGetSNES(_ts, &snes));
+    GELX_PETSC(SNESSetFunctionDomainError(snes)); // the stage fails; TS cuts the step
+    return;
+  }
+  _system.residual(F);
+  GELX_PETSC(MatMultAdd(_damped, u_dot, F, F));
+}
+
+void DampedDynamics::form_jacobian(double t, Vec u, double shift, Mat P)
+{
+  set_time(t);
+  _system.set_state(u);
+  _system.tangent(P);
+  GELX_PETSC(MatAXPY(P, shift, _damped, SAME_NONZERO_PATTERN));
+}
+
+void DampedDynamics::velocity(double t, Vec u)
+{
+  // The derivative at t of the Lagrange polynomial through (t, u) and the accepted states
+  // before it: sum_k L_k'(t) u_k
+  std::vector<double> times{t};
+  times.insert(times.end(), _history_time.begin(),
+               _history_time.begin() + std::min<std::size_t>(2, _history_time.size()));
+  std::vector<Vec> states{u};
+  for (std::size_t k = 1; k < times.size(); ++k)
+    states.push_back(_history[k - 1].get());
+  GELX_PETSC(VecSet(_velocity, 0.0));
+  for (std::size_t k = 0; k < times.size(); ++k)
+  {
+    double weight = 0;
+    for (std::size_t j = 0; j < times.size(); ++j)
+    {
+      if (j == k)
+        continue;
+      double term = 1 / (times[k] - times[j]);
+      for (std::size_t i = 0; i < times.size(); ++i)
+        if (i != j && i != k)
+          term *= (t - times[i]) / (times[k] - times[i]);
+      weight += term;
+    }
+    GELX_PETSC(VecAXPY(_velocity, weight, states[k]));
+  }
+}
+
+void DampedDynamics::accepted(int step, double t, Vec u)
+{
+  const bool first = _history.empty();
+  if (!first)
+  {
+    set_time(t);
+    _system.set_state(u);
+    _system.commit();
+    velocity(t, u);
+    OwnedVec work(_system.create_vector());
+    const double twice_kinetic = quadratic_form(_mass, _velocity, work.get());
+    // The power of the viscous forces the model applies (none in the prescribed rows), so
+    // that the work of the loads is SE + ED
+    const double power = quadratic_form(_damped, _velocity, work.get());
+    const double dt = t - _history_time.front();
+    _summary.dissipated_energy += 0.5 * (_power + power) * dt;
+    _power = power;
+
+    PetscInt snes_iterations, ksp_iterations, rejections;
+    GELX_PETSC(TSGetSNESIterations(_ts, &snes_iterations));
+    GELX_PETSC(TSGetKSPIterations(_ts, &ksp_iterations));
+    GELX_PETSC(TSGetStepRejections(_ts, &rejections));
+    SNES snes;
+    GELX_PETSC(TSGetSNES(_ts, &snes));
+    SNESConvergedReason reason;
+    GELX_PETSC(SNESGetConvergedReason(snes, &reason));
+    const double now
+        = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+              .count();
+
+    DynamicsRecord record;
+    record.step.step = step;
+    record.step.load = smooth_step(t, _loading_time);
+    record.step.step_size = dt;
+    record.step.newton.converged = true;
+    record.step.newton.iterations = snes_iterations - _snes_iterations;
+    record.step.newton.linear_iterations = ksp_iterations - _ksp_iterations;
+    record.step.newton.reason = SNESConvergedReasons[reason];
+    record.step.cutbacks = rejections - _rejections;
+    record.step.wall_time = now - _wall_start;
+    record.time = t;
+    record.strain_energy = _strain_energy();
+    record.kinetic_energy = 0.5 * twice_kinetic;
+    record.dissipated_energy = _summary.dissipated_energy;
+    _snes_iterations = snes_iterations;
+    _ksp_iterations = ksp_iterations;
+    _rejections = rejections;
+    _wall_start = now;
+
+    _summary.steps = step;
+    _summary.rejected_steps = rejections;
+    PetscInt failed_solves;
+    GELX_PETSC(TSGetSNESFailures(_ts, &failed_solves));
+    _summary.failed_solves = failed_solves;
+    _summary.time = t;
+    _summary.strain_energy = record.strain_energy;
+    _summary.kinetic_energy = record.kinetic_energy;
+    _summary.dissipation_ratio = record.dissipation_ratio();
+    // Over the whole run, as ABAQUS' ALLKE / ALLSE: at the smooth step's start both energies
+    // grow from zero, but their ratio stays bounded (SE ~ A^2, KE ~ A'^2, A'/A = 3/t)
+    if (record.strain_energy > 0)
+      _summary.kinetic_ratio = std::max(_summary.kinetic_ratio, record.kinetic_ratio());
+    for (const auto& observe : *_observers)
+      observe(record);
+  }
+  else
+    _wall_start
+        = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+              .count();
+  // Keep the last three accepted states, newest first
+  OwnedVec copy(_system.create_vector());
+  GELX_PETSC(VecCopy(u, copy.get()));
+  _history.insert(_history.begin(), std::move(copy));
+  _history_time.insert(_history_time.begin(), t);
+  if (_history.size() > 3)
+  {
+    _history.pop_back();
+    _history_time.pop_back();
+  }
+}
+
+DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observers)
+{
+  _observers = &observers;
+  _summary = DynamicsSummary{};
+  _summary.dissipation_bound = _dissipation_bound;
+  _summary.kinetic_bound = _kinetic_bound;
+  _history.clear();
+  _history_time.clear();
+  _power = 0; // the run starts at rest
+  _snes_iterations = _ksp_iterations = _rejections = 0;
+
+  OwnedVec x(_system.create_vector());
+  GELX_PETSC(VecCopy(_system.unknowns(), x.get()));
+  GELX_PETSC(TSSetTime(_ts, 0.0));
+  GELX_PETSC(TSSetStepNumber(_ts, 0));
+  callback_error = nullptr;
+  const PetscErrorCode ierr = TSSolve(_ts, x.get());
+  _observers = nullptr;
+  if (callback_error)
+    std::rethrow_exception(callback_error);
+  GELX_PETSC(ierr);
+  TSConvergedReason reason;
+  GELX_PETSC(TSGetConvergedReason(_ts, &reason));
+  // The last accepted state (TS leaves x there; a failed step is rolled back)
+  const double t = _history_time.empty() ? 0.0 : _history_time.front();
+  set_time(t);
+  _system.set_state(_history.empty() ? x.get() : _history.front().get());
+  // TS also stops "converged" at its step limit (-PREFIX_ts_max_steps): short of the end time
+  PetscReal end_time;
+  GELX_PETSC(TSGetMaxTime(_ts, &end_time));
+  if (reason < 0 || t < end_time * (1 - 1e-12))
+    throw ConvergenceError(std::string("damped dynamics stopped at t = ") + std::to_string(t)
+                           + " of " + std::to_string(end_time) + ": "
+                           + TSConvergedReasons[reason]);
+  return _summary;
+}
+
+} // namespace gelx

@@ -1,0 +1,174 @@
+#pragma once
+/// @file dynamics.h
+/// Damped quasi-static dynamics: a NonlinearSystem followed through time with PETSc TS, its
+/// loads ramped smoothly, the energies of ABAQUS' quasi-static checks recorded at every step.
+
+#include "path.h"
+#include "system.h"
+
+#include <dolfinx/fem/Form.h>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mpi.h>
+#include <nlohmann/json.hpp>
+#include <petscts.h>
+#include <string>
+#include <vector>
+
+namespace gelx
+{
+
+/// The smooth step A(s) = 10 s^3 - 15 s^4 + 6 s^5 of s = t / T, clamped to [0, 1] (ABAQUS'
+/// SMOOTH STEP amplitude): zero velocity and acceleration at both ends of the ramp, so that
+/// the loading starts and stops without a jerk that would excite the body.
+double smooth_step(double t, double loading_time);
+
+/// One accepted time step.
+struct DynamicsRecord
+{
+  /// step, load (the amplitude A(t) in [0, 1]), step_size (dt), newton (the step's SNES
+  /// iterations, linear iterations and reason), cutbacks (steps rejected before this one),
+  /// wall_time
+  StepRecord step;
+  double time = 0;
+  double strain_energy = 0;     ///< SE: the scene's stored energy (ABAQUS ALLSE)
+  double kinetic_energy = 0;    ///< KE = 1/2 v^T M v at the regularised velocity (ALLKE)
+  /// ED = int c v^T M_D v dt, trapezoidal (ALLSD): the work of the viscous forces applied
+  /// (M_D: M without the prescribed rows, whose motion the supports impose)
+  double dissipated_energy = 0;
+  /// KE / SE and ED / SE (NaN while SE = 0)
+  double kinetic_ratio() const { return kinetic_energy / strain_energy; }
+  double dissipation_ratio() const { return dissipated_energy / strain_energy; }
+  /// A row of steps.csv: step, time, amplitude, dt, the energies and ratios, iterations,
+  /// rejected steps, wall time.
+  nlohmann::json to_json() const;
+};
+
+using DynamicsObserver = std::function<void(const DynamicsRecord&)>;
+
+/// What a run says about itself (DampedDynamics::run), for summary.json (to_json()).
+struct DynamicsSummary
+{
+  int steps = 0;
+  int rejected_steps = 0; ///< steps TS rejected (error estimate or failed Newton solve)
+  int failed_solves = 0;  ///< stages whose Newton solve failed (inadmissible states included)
+  double time = 0;
+  double strain_energy = 0;
+  double kinetic_energy = 0;
+  double dissipated_energy = 0;
+  /// ED / SE at the end, against its bound
+  double dissipation_ratio = 0, dissipation_bound = 0;
+  /// The largest KE / SE over the steps (with SE > 0), against its bound
+  double kinetic_ratio = 0, kinetic_bound = 0;
+  bool quasi_static() const
+  {
+    return dissipation_ratio <= dissipation_bound && kinetic_ratio <= kinetic_bound;
+  }
+  nlohmann::json to_json() const;
+};
+
+/// Follows R(u; A(t)) = 0 through time as the first-order viscous problem
+///     c M u' + R(u; t) = 0,   u(0) = the system's current state,
+/// with M the mass matrix (a UFL mass form rho inner(du, v) dx, consistent), c a damping
+/// coefficient (1/time) and the loads A(t) ramped by the smooth step over the loading time T,
+/// then held for a hold time so that the state settles.
+///
+/// Why first-order: this is ABAQUS' *STABILIZE (volume-proportional viscous forces c M u'),
+/// the regularisation meant for quasi-static problems with instabilities. Its solutions are
+/// the equilibria wherever the path is stable (the viscous forces vanish as u' -> 0), and where
+/// an equilibrium is lost (a snap, an unstable bifurcated state) it moves to a stable one
+/// along a gradient-flow-like path, dissipating the energy released: the quasi-static answer
+/// (ED / SE says how far), with none of the second-order inertia that would make a
+/// generalised-alpha run ring around the new state (and need a damping tuned against the
+/// lowest frequencies, and steps resolving them, before settling). Its time integrators are
+/// the stiff, L-stable BDFs, whose step grows freely along the slow parts of a path; their
+/// error estimate drives the step with `-PREFIX_ts_adapt_type basic`. The kinetic energy is
+/// that of the body moving at the regularised velocity with its density rho: a diagnostic
+/// (ABAQUS' ALLKE), not a state variable of the model.
+///
+/// TS set-up: IFunction F(t, u, u') = c M_D u' + R(u; t), IJacobian shift c M_D + K, with M_D
+/// the mass matrix with the prescribed rows (NonlinearSystem::prescribed_rows) zeroed, so
+/// that those rows keep R's u - g(t): an algebraic equation of the DAE, which BDF integrates
+/// as such. The loads enter through apply_load(A(t)) before every evaluation. An inadmissible
+/// state (admissible() false) is a SNES function-domain error: the stage fails and TS retries
+/// it with a smaller step.
+///
+/// Options (prefix PREFIX, default `dynamics_`): gelx's loading_time (T, 1), hold_time (0),
+/// damping (c, 1), dt (first step, T / 50), dissipation_bound (ED / SE, 0.05, ABAQUS'
+/// recommended ALLSD / ALLIE) and kinetic_bound (KE / SE, 0.05); PETSc's -PREFIX_ts_*
+/// (defaults: ts_type bdf, ts_bdf_order 2, ts_adapt_type basic, ts_adapt_dt_max T / 10 so that
+/// the ramp's energies are resolved, ts_max_snes_failures -1, ts_max_reject 20,
+/// ts_max_steps 10000), -PREFIX_snes_*, -PREFIX_ksp_* and -PREFIX_pc_* (a direct solve).
+///
+/// The velocity of the records is the derivative at t_n of the polynomial through the last
+/// three accepted states (two on the first step), the derivative BDF2 itself uses. The
+/// energies obey the model's balance W = SE + ED (W the work of the loads and of the prescribed
+/// motions); KE is no term of it, since the model has no inertia.
+/// The system's unknowns must be its problem's (no decorator that changes the layout), and
+/// commit() is called once per accepted step, not per Newton iteration (a contact active set
+/// moves once per step). No restart yet: TSBDF's history (the previous states) cannot be
+/// handed back to PETSc, so a continued run would restart at order 1 and leave the
+/// uninterrupted path at the time-integration tolerance.
+class DampedDynamics
+{
+public:
+  /// `mass_form`: the bilinear mass form on the problem's space; `strain_energy()`: the
+  /// stored energy at the system's current state (collective); `apply_load(a)`: every load
+  /// at amplitude a in [0, 1], as LoadStepper's apply_load.
+  DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
+                 const dolfinx::fem::Form<double>& mass_form,
+                 std::function<double()> strain_energy, std::function<void(double)> apply_load,
+                 const std::string& prefix = "dynamics_");
+  ~DampedDynamics();
+  DampedDynamics(const DampedDynamics&) = delete;
+  DampedDynamics& operator=(const DampedDynamics&) = delete;
+
+  /// Run from the system's current state at t = 0 to T + hold, calling every observer after
+  /// every accepted step. Throws ConvergenceError when TS gives up; the system then holds the
+  /// last accepted state.
+  DynamicsSummary run(const std::vector<DynamicsObserver>& observers);
+
+  /// The run's summary so far (complete after run()).
+  const DynamicsSummary& summary() const { return _summary; }
+  double loading_time() const { return _loading_time; }
+  double damping() const { return _damping; }
+  TS ts() const { return _ts; }
+
+  /// For the C callbacks: F = c M_D u' + R(u; t), and its Jacobian into P.
+  void form_function(double t, Vec u, Vec u_dot, Vec F);
+  void form_jacobian(double t, Vec u, double shift, Mat P);
+  /// Energies and observers after an accepted step.
+  void accepted(int step, double t, Vec u);
+  /// An exception a callback raised, rethrown by run() after TSSolve returns
+  std::exception_ptr callback_error;
+
+private:
+  void set_time(double t);
+  /// The velocity at the last accepted state (see the class comment) into _velocity.
+  void velocity(double t, Vec u);
+
+  MPI_Comm _comm;
+  NonlinearSystem& _system;
+  std::function<double()> _strain_energy;
+  std::function<void(double)> _apply_load;
+  std::string _prefix;
+  double _loading_time, _hold_time, _damping, _dissipation_bound, _kinetic_bound;
+  TS _ts = nullptr;
+  Mat _mass = nullptr;   ///< M, for the energies
+  Mat _damped = nullptr; ///< c M_D, for F and its Jacobian
+  Mat _jacobian = nullptr;
+  Vec _velocity = nullptr;
+  /// The last three accepted states and times, newest first (for the velocity)
+  std::vector<OwnedVec> _history;
+  std::vector<double> _history_time;
+
+  // The run in progress
+  const std::vector<DynamicsObserver>* _observers = nullptr;
+  DynamicsSummary _summary;
+  double _power = 0; ///< c v^T M v at the last accepted step
+  int _snes_iterations = 0, _ksp_iterations = 0, _rejections = 0;
+  double _wall_start = 0;
+};
+
+} // namespace gelx

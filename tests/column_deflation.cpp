@@ -121,11 +121,12 @@ int main(int argc, char* argv[])
         {
           problem.set_state(point.state.get());
           const auto tip = column.tip_deflection();
+          const double energy = column.potential_energy(); // collective: on every rank
           if (root)
             std::printf("P = %.3f P_cr1: branch %d, tip (%.6f, %.6f) L, energy %.8g, %d negative "
                         "eigenvalues, %d Newton iterations\n",
-                        branch.loads.back(), branch.id, tip[0], tip[1],
-                        column.potential_energy(), point.negative_eigenvalues,
+                        branch.loads.back(), branch.id, tip[0], tip[1], energy,
+                        point.negative_eigenvalues,
                         point.newton.iterations);
           at_load[branch.loads.back()].push_back(
               {branch.id, tip, point.negative_eigenvalues, point.state.get()});

@@ -46,12 +46,17 @@ DeflatedSystem::DeflatedSystem(NonlinearSystem& inner, const std::string& prefix
 
 void DeflatedSystem::deflate(Vec solution) { _roots.push_back(copy_of(solution)); }
 
+double DeflatedSystem::norm(Vec x) const
+{
+  PetscReal n;
+  GELX_PETSC(VecNorm(x, NORM_2, &n));
+  return _scale * n;
+}
+
 double DeflatedSystem::distance(Vec a, Vec b) const
 {
   GELX_PETSC(VecWAXPY(_work.get(), -1.0, b, a));
-  PetscReal d;
-  GELX_PETSC(VecNorm(_work.get(), NORM_2, &d));
-  return _scale * d;
+  return norm(_work.get());
 }
 
 double DeflatedSystem::distance_to_nearest(Vec x) const
@@ -104,10 +109,8 @@ std::unique_ptr<Equilibrium> DeflationSolver::solve(Vec guess)
   if (!report.converged)
     return nullptr;
   Vec x = _system.unknowns();
-  OwnedVec zero(_system.create_vector());
-  GELX_PETSC(VecSet(zero.get(), 0.0));
   const double nearest = _deflated.distance_to_nearest(x);
-  if (nearest <= _min_distance * std::max(_deflated.distance(x, zero.get()), 1.0))
+  if (nearest <= _min_distance * std::max(_deflated.norm(x), 1.0))
   {
     if (dolfinx::MPI::rank(_comm) == 0)
       std::printf("  deflation: converged %.3g from a known solution: not new\n", nearest);
@@ -116,7 +119,6 @@ std::unique_ptr<Equilibrium> DeflationSolver::solve(Vec guess)
   auto found = std::make_unique<Equilibrium>();
   found->state = copy_of(x);
   found->newton = std::move(report);
-  found->guess = -1;
   _system.tangent(_K);
   found->negative_eigenvalues = negative_eigenvalues(_comm, _K);
   _deflated.deflate(x);
@@ -126,13 +128,12 @@ std::unique_ptr<Equilibrium> DeflationSolver::solve(Vec guess)
 std::vector<Equilibrium> DeflationSolver::find(const std::vector<Vec>& guesses)
 {
   std::vector<Equilibrium> found;
-  for (std::size_t g = 0; g < guesses.size(); ++g)
+  for (Vec guess : guesses)
     while (int(_deflated.size()) < _max_solutions)
     {
-      auto solution = solve(guesses[g]);
+      auto solution = solve(guess);
       if (!solution)
         break;
-      solution->guess = int(g);
       found.push_back(std::move(*solution));
     }
   return found;
@@ -191,7 +192,7 @@ std::vector<Branch> deflated_continuation(
         guesses.push_back(g.get());
       for (auto& point : solver.find(guesses))
       {
-        branches.push_back({int(branches.size()), load, {load}, {}});
+        branches.push_back({int(branches.size()), {load}, {}});
         branches.back().points.push_back(std::move(point));
         observe(branches.back(), branches.back().points.back());
         continued.push_back(branches.size() - 1);

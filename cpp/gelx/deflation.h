@@ -39,7 +39,8 @@ public:
   /// Forget every deflated solution.
   void clear() { _roots.clear(); }
   std::size_t size() const { return _roots.size(); }
-  /// |a - b| in the operator's norm.
+  /// |x| and |a - b| in the operator's norm.
+  double norm(Vec x) const;
   double distance(Vec a, Vec b) const;
   /// The smallest distance |x - r_i| to a deflated solution (+inf without one).
   double distance_to_nearest(Vec x) const;
@@ -59,7 +60,6 @@ struct Equilibrium
   OwnedVec state;            ///< the unknowns
   NewtonReport newton;       ///< the solve that found it
   int negative_eigenvalues;  ///< of the tangent there (its inertia): 0 = stable
-  int guess;                 ///< the index of the initial guess it was found from
 };
 
 /// Finds distinct equilibria of a system at its current load by deflation: from each initial
@@ -81,8 +81,6 @@ public:
   DeflationSolver(MPI_Comm comm, NonlinearSystem& system,
                   const std::string& prefix = "deflation_");
 
-  /// Deflate these (known solutions at the current load, e.g. continued branches) as well.
-  void deflate(Vec solution) { _deflated.deflate(solution); }
   /// Forget every deflated solution (before a new load).
   void clear() { _deflated.clear(); }
 
@@ -110,9 +108,8 @@ private:
 /// A branch of a deflated continuation: its equilibria at consecutive loads.
 struct Branch
 {
-  int id;               ///< in the order the branches were found
-  double first_load;    ///< where it was found
-  std::vector<double> loads;
+  int id;                   ///< in the order the branches were found
+  std::vector<double> loads; ///< from the load where it was found
   std::vector<Equilibrium> points;
 };
 

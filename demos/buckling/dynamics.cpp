@@ -52,9 +52,7 @@ int main(int argc, char* argv[])
 
   return gelx::run_program(argc, argv, "gelx-buckling-dynamics", prm, [&](gelx::Run& run)
   {
-    if (p.ty <= p.tx)
-      throw gelx::InputError("the depth ty must exceed the width tx, so that the column "
-                             "buckles in x");
+    p.check();
 
     // 2. The imperfect column: the linear buckling load and mode 1 seeded into the geometry
     gelx::scenes::EulerColumn column(run.comm(), p);

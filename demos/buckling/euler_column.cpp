@@ -37,6 +37,12 @@ void ColumnParameters::bind(Parameters& prm)
            [](double v) { return v > -1 && v < 0.5 ? "" : "must be in (-1, 0.5)"; });
 }
 
+void ColumnParameters::check() const
+{
+  if (ty <= tx)
+    throw InputError("the depth ty must exceed the width tx, so that the column buckles in x");
+}
+
 EulerColumn::EulerColumn(MPI_Comm comm, ColumnParameters p)
     : _p(p), _box(box_mesh(comm, {p.tx, p.ty, p.L},
                                         {std::size_t(p.cells[0]), std::size_t(p.cells[1]),

@@ -45,6 +45,8 @@ struct ColumnParameters
   /// Bind the members but rho to scene parameters (sections "geometry" and "material"), the
   /// current values as their defaults.
   void bind(Parameters& prm);
+  /// Throws InputError unless ty > tx (the column must buckle in x).
+  void check() const;
 };
 
 /// The column on [0, tx] x [0, ty] x [0, L], clamped at z = 0.

@@ -94,9 +94,7 @@ int main(int argc, char* argv[])
 
   return gelx::run_program(argc, argv, "gelx-buckling", prm, [&](gelx::Run& run)
   {
-    if (p.ty <= p.tx)
-      throw gelx::InputError("the depth ty must exceed the width tx, so that the column "
-                             "buckles in x");
+    p.check();
 
     // 2. The column and its linear buckling modes ("time" in fields.xdmf: the mode number)
     gelx::scenes::EulerColumn column(run.comm(), p);
@@ -157,7 +155,10 @@ int main(int argc, char* argv[])
                            {"iterations", pt.newton.iterations},
                            {"cutbacks", pt.cutbacks},
                            {"stability", std::isnan(pt.stability) ? nlohmann::json(nullptr)
-                                                                  : nlohmann::json(pt.stability)}});
+                                                                  : nlohmann::json(pt.stability)},
+                           {"negative_eigenvalues", pt.negative_eigenvalues >= 0
+                                                        ? nlohmann::json(pt.negative_eigenvalues)
+                                                        : nlohmann::json(nullptr)}});
       run.summary.update({{"arclength_steps", path_steps},
                           {"corrector_iterations_per_step",
                            double(corrector_iterations) / path_steps},

@@ -1,0 +1,63 @@
+"""The cost of the tools for instabilities on the column of the buckling scene, one rank.
+
+- arc-length: `gelx-buckling --ends clamped-clamped` (the straight path with the stability
+  eigenvalue, branch switching, the imperfect column), time per arc-length step;
+- damped dynamics: `gelx-buckling-dynamics` (the imperfect clamped-clamped column shortened
+  past buckling, BDF2), time per accepted time step and for the whole path;
+- deflated continuation: `gelx-buckling --ty 1.2 --base sliding --diagram true` (the perfect
+  clamped-free column's bifurcation diagram to 1.6 P_cr1), time per diagram point and in all;
+- inertia against the eigenvalue: the scene's paths (to d/L = 0.05) with each stability test
+  on the straight path (`-straight_arclength_stability`), time per arc-length step.
+Load stepping has no path of its own on the column (the scenes that use it are block,
+pyramid and fiber_gel). Time a quiet machine.
+
+usage: instabilities.py BUILD OUT     (./gelx bench instabilities)
+"""
+import csv
+import json
+import pathlib
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from studies import MPI_ENV  # noqa: E402  (demos/studies.py)
+
+build, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
+
+
+def run(program, folder, options):
+    """Run one program on one rank; its summary.json, its steps.csv rows and the wall time."""
+    start = time.perf_counter()
+    subprocess.run([str(build / "demos" / "buckling" / program), "--output", str(out / folder)]
+                   + options, check=True, stdout=subprocess.DEVNULL, env=MPI_ENV)
+    seconds = time.perf_counter() - start
+    summary = json.loads((out / folder / "summary.json").read_text())
+    rows = list(csv.DictReader(open(out / folder / "steps.csv")))
+    return summary, rows, seconds
+
+
+table = []
+s, rows, seconds = run("gelx-buckling", "arclength", ["--ends", "clamped-clamped"])
+table.append(("arc-length (clamped-clamped: straight, branch, imperfect)", s["arclength_steps"],
+              s["arclength_steps"] * s["time_per_arclength_step"], seconds))
+s, rows, seconds = run("gelx-buckling-dynamics", "dynamics", [])
+table.append(("damped dynamics (clamped-clamped, imperfect)", s["dynamics"]["steps"],
+              s["wall_time"], seconds))
+for test in ("eigenvalue", "inertia"):
+    s, rows, seconds = run("gelx-buckling", f"straight_{test}",
+                           ["--ty", "1.2", "--base", "sliding", "--max_deflection", "0.05",
+                            "-straight_arclength_stability", test])
+    straight = [r for r in rows if r["path"] == "straight"]
+    table.append((f"arc-length, stability by {test} (ty/tx 1.2; {len(straight)} straight)",
+                  s["arclength_steps"], s["arclength_steps"] * s["time_per_arclength_step"],
+                  seconds))
+s, rows, seconds = run("gelx-buckling", "diagram", ["--ty", "1.2", "--base", "sliding",
+                                                    "--diagram", "true"])
+table.append((f"deflated continuation ({s['diagram_branches']} branches to 1.6 P_cr1)",
+              s["diagram_points"], s["diagram_time"], seconds))
+
+print(f"{'path':62s} {'points':>7s} {'s (path)':>9s} {'s/point':>8s} {'s (run)':>8s}")
+for name, points, path_seconds, run_seconds in table:
+    print(f"{name:62s} {points:7d} {path_seconds:9.1f} {path_seconds / points:8.3f} "
+          f"{run_seconds:8.1f}")

@@ -141,6 +141,7 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(MatZeroRows(_damped, PetscInt(rows.size()), rows.data(), 0.0, nullptr, nullptr));
   _jacobian = system.create_matrix();
   _velocity = system.create_vector();
+  _work.reset(system.create_vector());
 
   // Defaults (the user's options win), then TS, SNES and KSP from the options database
   const auto number = [](double v)
@@ -249,11 +250,10 @@ void DampedDynamics::accepted(int step, double t, Vec u)
     _system.set_state(u);
     _system.commit();
     velocity(t, u);
-    OwnedVec work(_system.create_vector());
-    const double twice_kinetic = quadratic_form(_mass, _velocity, work.get());
+    const double twice_kinetic = quadratic_form(_mass, _velocity, _work.get());
     // The power of the viscous forces the model applies (none in the prescribed rows), so
     // that the work of the loads is SE + ED
-    const double power = quadratic_form(_damped, _velocity, work.get());
+    const double power = quadratic_form(_damped, _velocity, _work.get());
     const double dt = t - _history_time.front();
     _summary.dissipated_energy += 0.5 * (_power + power) * dt;
     _power = power;
@@ -309,16 +309,19 @@ void DampedDynamics::accepted(int step, double t, Vec u)
     _wall_start
         = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
               .count();
-  // Keep the last three accepted states, newest first
-  OwnedVec copy(_system.create_vector());
-  GELX_PETSC(VecCopy(u, copy.get()));
-  _history.insert(_history.begin(), std::move(copy));
-  _history_time.insert(_history_time.begin(), t);
-  if (_history.size() > 3)
+  // Keep the last three accepted states, newest first (the oldest vector is reused)
+  OwnedVec copy;
+  if (_history.size() == 3)
   {
+    copy = std::move(_history.back());
     _history.pop_back();
     _history_time.pop_back();
   }
+  else
+    copy.reset(_system.create_vector());
+  GELX_PETSC(VecCopy(u, copy.get()));
+  _history.insert(_history.begin(), std::move(copy));
+  _history_time.insert(_history_time.begin(), t);
 }
 
 DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observers)

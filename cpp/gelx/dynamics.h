@@ -159,6 +159,7 @@ private:
   Mat _damped = nullptr; ///< c M_D, for F and its Jacobian
   Mat _jacobian = nullptr;
   Vec _velocity = nullptr;
+  OwnedVec _work; ///< M v, for the energies
   /// The last three accepted states and times, newest first (for the velocity)
   std::vector<OwnedVec> _history;
   std::vector<double> _history_time;

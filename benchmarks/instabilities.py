@@ -1,4 +1,5 @@
-"""The cost of the tools for instabilities on the column of the buckling scene, one rank.
+"""The cost of the tools for instabilities on the column of the buckling scene and on the
+snapping shell of the inflation scene, one rank.
 
 - arc-length: `gelx-buckling --ends clamped-clamped` (the straight path with the stability
   eigenvalue, branch switching, the imperfect column), time per arc-length step;
@@ -8,8 +9,10 @@
   clamped-free column's bifurcation diagram to 1.6 P_cr1), time per diagram point and in all;
 - inertia against the eigenvalue: the scene's paths (to d/L = 0.05) with each stability test
   on the straight path (`-straight_arclength_stability`), time per arc-length step.
-Load stepping has no path of its own on the column (the scenes that use it are block,
-pyramid and fiber_gel). Time a quiet machine.
+Load stepping has no path of its own on the column; the snapping shell
+(`gelx-inflation-snap`: a Mooney-Rivlin shell inflated past its pressure maximum) times load
+stepping, damped dynamics and arc-length on one problem, per path point (load stepping's
+points up to where it fails, its failed attempts included). Time a quiet machine.
 
 usage: instabilities.py BUILD OUT     (./gelx bench instabilities)
 """
@@ -26,10 +29,10 @@ from studies import MPI_ENV  # noqa: E402  (demos/studies.py)
 build, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
 
 
-def run(program, folder, options):
+def run(program, folder, options, demo="buckling"):
     """Run one program on one rank; its summary.json, its steps.csv rows and the wall time."""
     start = time.perf_counter()
-    subprocess.run([str(build / "demos" / "buckling" / program), "--output", str(out / folder)]
+    subprocess.run([str(build / "demos" / demo / program), "--output", str(out / folder)]
                    + options, check=True, stdout=subprocess.DEVNULL, env=MPI_ENV)
     seconds = time.perf_counter() - start
     summary = json.loads((out / folder / "summary.json").read_text())
@@ -56,6 +59,15 @@ s, rows, seconds = run("gelx-buckling", "diagram", ["--ty", "1.2", "--base", "sl
                                                     "--diagram", "true"])
 table.append((f"deflated continuation ({s['diagram_branches']} branches to 1.6 P_cr1)",
               s["diagram_points"], s["diagram_time"], seconds))
+
+s, rows, seconds = run("gelx-inflation-snap", "snap", [], demo="inflation")
+for method, name, points in (("load_stepping", "load stepping (the shell, to its maximum)",
+                              s["load_stepping"]["steps"]),
+                             ("dynamics", "damped dynamics (the shell, through the snap)",
+                              s["dynamics"]["steps"]),
+                             ("arclength", "arc-length (the shell, through both extrema)",
+                              s["arclength"]["steps"])):
+    table.append((name, points, points * s[method]["time_per_step"], seconds))
 
 print(f"{'path':62s} {'points':>7s} {'s (path)':>9s} {'s/point':>8s} {'s (run)':>8s}")
 for name, points, path_seconds, run_seconds in table:

@@ -6,6 +6,8 @@ thesis in shared/seed/.
   (Eq. 4.10), the chi(T) line of section 4.4.2 steps (1)-(2), the contraction ratios of
   Eq. 4.13-4.14;
 - the inflated incompressible neo-Hookean thick spherical shell: p(lambda_a) and its maximum;
+  the compressible Mooney-Rivlin shell's spherically symmetric solution (its radial equation
+  integrated);
 - Euler's critical load and the elastica of a clamped-free and a clamped-clamped column.
 
 Roots are found by bisection on a bracket that a sign change proves, so nothing here depends
@@ -159,6 +161,101 @@ def shell_pressure_maximum(A, B):
     unique_root proves a single sign change on (1, 10)."""
     lambda_a = unique_root(lambda x: shell_pressure_slope(x, A, B), 1.0 + 1e-9, 10.0)
     return lambda_a, shell_pressure_over_G(lambda_a, A, B)
+
+
+# --- The compressible Mooney-Rivlin shell, spherically symmetric -------------------------------
+# The scenes' shells are compressible (U = C10 (I1_bar - 3) + C01 (I2_bar - 3) + K/2 (J - 1)^2,
+# forms/materials.py); at K/G = 1000 their walls, stretched to 4-5, change volume by a few per
+# cent, enough to move the far branch of the N-shaped law by 10 % in stretch from the
+# incompressible closed form. Their spherically symmetric solution r(R) is the radial
+# equilibrium d sigma_r/dr = 2 (sigma_t - sigma_r)/r with dr/dR = lambda_r, integrated here
+# inward from the free outer surface (sigma_r(B) = 0) by RK4 in R, with the outer radius r(B)
+# found by the secant method so that r(A) = lambda_a A; then p = -sigma_r(A). At each point
+# lambda_r solves sigma_r(lambda_r, lambda_t) = sigma_r by Newton's method. 200 steps: the
+# pressure agrees with 400 steps to 1e-14, and with the incompressible closed form to 1e-8 at
+# K/G = 1e8.
+
+
+def _principal_cauchy(stretches, C10, C01, K):
+    """The principal Cauchy stresses of the compressible Mooney-Rivlin solid at principal
+    stretches (l1, l2, l3): sigma_i = l_i dU/dl_i / J."""
+    l1, l2, l3 = stretches
+    J = l1 * l2 * l3
+    I1 = l1**2 + l2**2 + l3**2
+    I2 = (l1 * l2)**2 + (l2 * l3)**2 + (l3 * l1)**2
+    def sigma(l):
+        return (C10 * J**(-2 / 3) * (2 * l * l - 2 / 3 * I1)
+                + C01 * J**(-4 / 3) * (2 * l * l * (I1 - l * l) - 4 / 3 * I2)
+                + K * (J - 1) * J) / J
+    return sigma(l1), sigma(l2)
+
+
+def _radial_stretch(sigma_r, lambda_t, guess, C10, C01, K):
+    """lambda_r with sigma_r(lambda_r, lambda_t, lambda_t) = sigma_r (Newton, central
+    differences: sigma_r increases monotonically with lambda_r)."""
+    lr = guess
+    for _ in range(50):
+        s = _principal_cauchy((lr, lambda_t, lambda_t), C10, C01, K)[0]
+        h = 1e-7 * lr
+        slope = (_principal_cauchy((lr + h, lambda_t, lambda_t), C10, C01, K)[0]
+                 - _principal_cauchy((lr - h, lambda_t, lambda_t), C10, C01, K)[0]) / (2 * h)
+        step = (s - sigma_r) / slope
+        lr -= step
+        if abs(step) < 1e-14 * lr:
+            break
+    return lr
+
+
+def _shoot(r_B, A, B, C10, C01, K, steps=200):
+    """(r(A), sigma_r(A)) from r(B) = r_B, sigma_r(B) = 0."""
+    def rates(R, r, sigma_r, guess):
+        lt = r / R
+        lr = _radial_stretch(sigma_r, lt, guess, C10, C01, K)
+        sigma_t = _principal_cauchy((lt, lr, lt), C10, C01, K)[0]
+        return lr, lr * 2 * (sigma_t - sigma_r) / r, lr
+    r, s, R = r_B, 0.0, B
+    h = (A - B) / steps
+    guess = (B / r_B)**2
+    for _ in range(steps):
+        k1r, k1s, guess = rates(R, r, s, guess)
+        k2r, k2s, _ = rates(R + h / 2, r + h / 2 * k1r, s + h / 2 * k1s, guess)
+        k3r, k3s, _ = rates(R + h / 2, r + h / 2 * k2r, s + h / 2 * k2s, guess)
+        k4r, k4s, _ = rates(R + h, r + h * k3r, s + h * k3s, guess)
+        r += h / 6 * (k1r + 2 * k2r + 2 * k3r + k4r)
+        s += h / 6 * (k1s + 2 * k2s + 2 * k3s + k4s)
+        R += h
+    return r, s
+
+
+def compressible_shell_pressure(lambda_a, A, B, C10, C01, K):
+    """The cavity pressure of the compressible Mooney-Rivlin shell at inner hoop stretch
+    lambda_a (> 1), its spherically symmetric solution (see above)."""
+    x0 = shell_outer_stretch(lambda_a, A, B) * B  # the incompressible outer radius
+    x1 = 1.001 * x0
+    f0 = _shoot(x0, A, B, C10, C01, K)[0] - lambda_a * A
+    for _ in range(50):
+        f1 = _shoot(x1, A, B, C10, C01, K)[0] - lambda_a * A
+        if f1 == f0:
+            break
+        x0, x1, f0 = x1, x1 - f1 * (x1 - x0) / (f1 - f0), f1
+        if abs(x1 - x0) < 1e-13 * x1:
+            break
+    return -_shoot(x1, A, B, C10, C01, K)[1]
+
+
+def golden_extremum(f, lo, hi, sign, xtol=1e-7):
+    """(x, f(x)) at the extremum of f in [lo, hi] (sign +1 a maximum, -1 a minimum), golden
+    section: f must be unimodal there."""
+    g = (math.sqrt(5) - 1) / 2
+    a, b = lo, hi
+    while b - a > xtol * b:
+        x1, x2 = b - g * (b - a), a + g * (b - a)
+        if sign * f(x1) < sign * f(x2):
+            a = x1
+        else:
+            b = x2
+    x = 0.5 * (a + b)
+    return x, f(x)
 
 
 # --- Euler column and the elastica -------------------------------------------------------------

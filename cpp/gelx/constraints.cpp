@@ -638,6 +638,14 @@ Mat MultipointConstraint::create_matrix() const
   return A;
 }
 
+Mat MultipointConstraint::restrict_operator(Mat A) const
+{
+  require_finalized("restrict_operator");
+  Mat reduced;
+  GELX_PETSC(MatPtAP(A, _P, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &reduced));
+  return reduced;
+}
+
 std::vector<PetscInt> MultipointConstraint::prescribed_rows() const
 {
   require_finalized("prescribed_rows");

@@ -160,6 +160,8 @@ public:
   /// tangent() reuses.
   Mat create_matrix() const override;
   bool admissible() const override { return _problem.admissible(); }
+  /// P^T A P (PETSc MatPtAP).
+  Mat restrict_operator(Mat A) const override;
   /// The Dirichlet masters and the prescribed macro unknowns.
   std::vector<PetscInt> prescribed_rows() const override;
   NonlinearProblem& problem() override { return _problem; }

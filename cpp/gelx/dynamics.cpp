@@ -1,6 +1,7 @@
 #include "dynamics.h"
 #include "parameters.h"
 #include "petsc_utils.h"
+#include "problem.h"
 
 #include <algorithm>
 #include <chrono>
@@ -109,27 +110,28 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
       _dissipation_bound(positive_option(prefix, "dissipation_bound", 0.05)),
       _kinetic_bound(positive_option(prefix, "kinetic_bound", 0.05))
 {
-  // The mass form lives on the problem's space: the system must keep the problem's layout
-  const auto& of_problem = system.unknown_of_problem_dof();
-  const bool same_layout
-      = std::all_of(of_problem.begin(), of_problem.end(),
-                    [i = PetscInt(0)](PetscInt k) mutable { return k == i++; });
-  PetscInt n_local;
-  Vec x = system.unknowns();
-  GELX_PETSC(VecGetLocalSize(x, &n_local));
-  if (!same_layout || PetscInt(of_problem.size()) != n_local)
-    throw std::invalid_argument("DampedDynamics needs a system whose unknowns are its "
-                                "problem's (no reduced or bordered system)");
-
-  // M (for the energies), and c M_D: M with the prescribed rows zeroed (for F and J). Both
-  // in the tangent's sparsity (the same space and cells), so that J = K + shift c M_D adds
-  // entry by entry
-  _mass = system.create_matrix();
-  GELX_PETSC(MatZeroEntries(_mass));
-  dolfinx::fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(_mass, ADD_VALUES),
-                                mass_form, {});
-  GELX_PETSC(MatAssemblyBegin(_mass, MAT_FINAL_ASSEMBLY));
-  GELX_PETSC(MatAssemblyEnd(_mass, MAT_FINAL_ASSEMBLY));
+  // M (for the energies), and c M_D: M with the prescribed rows zeroed (for F and J), both
+  // on the system's unknowns (P^T M P on a reduced space). The mass is assembled in the
+  // problem's tangent pattern, so that its restriction has the system tangent's pattern and
+  // J = K + shift c M_D adds entry by entry
+  {
+    Mat mass = system.problem().create_matrix();
+    GELX_PETSC(MatZeroEntries(mass));
+    dolfinx::fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(mass, ADD_VALUES),
+                                  mass_form, {});
+    GELX_PETSC(MatAssemblyBegin(mass, MAT_FINAL_ASSEMBLY));
+    GELX_PETSC(MatAssemblyEnd(mass, MAT_FINAL_ASSEMBLY));
+    try
+    {
+      _mass = system.restrict_operator(mass);
+    }
+    catch (const std::invalid_argument& e)
+    {
+      MatDestroy(&mass);
+      throw std::invalid_argument(std::string("DampedDynamics: ") + e.what());
+    }
+    GELX_PETSC(MatDestroy(&mass));
+  }
   GELX_PETSC(MatDuplicate(_mass, MAT_COPY_VALUES, &_damped));
   GELX_PETSC(MatScale(_damped, _damping));
   GELX_PETSC(MatSetOption(_damped, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));

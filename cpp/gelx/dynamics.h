@@ -105,8 +105,9 @@ struct DynamicsSummary
 /// three accepted states (two on the first step), the derivative BDF2 itself uses. The
 /// energies obey the model's balance W = SE + ED (W the work of the loads and of the prescribed
 /// motions); KE is no term of it, since the model has no inertia.
-/// The system's unknowns must be its problem's (no decorator that changes the layout), and
-/// commit() is called once per accepted step, not per Newton iteration (a contact active set
+/// The system may be the problem or a decorator of it (a contact, a reduced space of
+/// constraints: the mass is then P^T M P, NonlinearSystem::restrict_operator), not a bordered
+/// system with unknowns of its own (the arc-length's load). commit() is called once per accepted step, not per Newton iteration (a contact active set
 /// moves once per step). No restart yet: TSBDF's history (the previous states) cannot be
 /// handed back to PETSc, so a continued run would restart at order 1 and leave the
 /// uninterrupted path at the time-integration tolerance.

@@ -15,6 +15,24 @@
 namespace gelx
 {
 
+Mat NonlinearSystem::restrict_operator(Mat A) const
+{
+  // The unknowns must be the problem's dofs, in order
+  const auto& of_problem = unknown_of_problem_dof();
+  const bool identity = std::all_of(of_problem.begin(), of_problem.end(),
+                                    [i = PetscInt(0)](PetscInt k) mutable { return k == i++; });
+  PetscInt n_local;
+  Vec x = create_vector();
+  GELX_PETSC(VecGetLocalSize(x, &n_local));
+  GELX_PETSC(VecDestroy(&x));
+  if (!identity || PetscInt(of_problem.size()) != n_local)
+    throw std::invalid_argument("this system's unknowns are not its problem's dofs (a bordered "
+                                "system): a problem's operator has no meaning on them");
+  Mat copy;
+  GELX_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &copy));
+  return copy;
+}
+
 NonlinearProblem::NonlinearProblem(std::shared_ptr<dolfinx::fem::Function<double>> u,
                                    std::shared_ptr<const dolfinx::fem::Form<double>> residual_form,
                                    std::shared_ptr<const dolfinx::fem::Form<double>> tangent_form,

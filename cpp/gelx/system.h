@@ -94,6 +94,13 @@ public:
   /// Decorators with such rows override it and pass it inward.
   virtual void set_predicting(bool /*predicting*/) {}
 
+  /// A bilinear operator A of the problem's space (a mass matrix, assembled in the pattern of
+  /// problem().create_matrix()) as an operator on this system's unknowns, in the pattern of
+  /// create_matrix(): a copy where the unknowns are the problem's dofs, P^T A P on a reduced
+  /// space (MultipointConstraint). Layouts with unknowns of their own (the arc-length
+  /// bordering) have no such operator and throw. Collective.
+  virtual Mat restrict_operator(Mat A) const;
+
   /// The base problem: its mesh, displacement and forms (for outputs and for decorators).
   virtual NonlinearProblem& problem() = 0;
   /// For each owned entry of the base problem's vector, its local index in unknowns(), or -1
@@ -123,6 +130,7 @@ public:
   double step_factor(Vec x, Vec y) override { return _inner.step_factor(x, y); }
   void configure(SNES snes) const override { _inner.configure(snes); }
   void set_predicting(bool predicting) override { _inner.set_predicting(predicting); }
+  Mat restrict_operator(Mat A) const override { return _inner.restrict_operator(A); }
   NonlinearProblem& problem() override { return _inner.problem(); }
   const std::vector<PetscInt>& unknown_of_problem_dof() const override
   {

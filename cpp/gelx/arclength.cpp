@@ -453,7 +453,13 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
     record.newton = report;
     record.cutbacks = cutbacks;
     record.limit_point = previous_load_direction * state.load_direction < 0;
+    // A limit point between the two points is where the tangent's load component changes
+    // sign: the tangent's determinant changes sign there too, so one eigenvalue crossing is
+    // the limit point's and no bifurcation. (The secant's load direction, limit_point, can
+    // lag a step behind: a point just past a maximum may still lie above the point before.)
+    const double previous_t_l = t_l;
     predictor_direction();
+    const bool limit_in_tangent = previous_t_l * t_l < 0;
     if (stability == Stability::eigenvalue)
     {
       const double previous = state.stability;
@@ -461,15 +467,15 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
                                                  _system.problem().u()->function_space())
                             .load_factor;
       record.stability = state.stability;
-      record.bifurcation = !record.limit_point && previous * state.stability < 0;
+      record.bifurcation = !limit_in_tangent && previous * state.stability < 0;
     }
     else if (stability == Stability::inertia)
     {
       const int previous = state.negative_eigenvalues;
       state.negative_eigenvalues = _bordered.tangent_negative_eigenvalues();
       record.negative_eigenvalues = state.negative_eigenvalues;
-      record.bifurcation = !record.limit_point && previous >= 0
-                           && previous != state.negative_eigenvalues;
+      const int crossings = std::abs(state.negative_eigenvalues - previous);
+      record.bifurcation = previous >= 0 && crossings > (limit_in_tangent ? 1 : 0);
     }
     ds = std::min(ds_max, ds * std::clamp(std::sqrt(double(target_it)
                                                     / std::max(report.iterations, 1)),

@@ -62,8 +62,9 @@ struct StepRecord
   bool limit_point = false; ///< the load passed an extremum since the previous point
   double stability = NAN;   ///< the tangent's eigenvalue nearest zero (when tracked)
   int negative_eigenvalues = -1; ///< the tangent's negative eigenvalues (inertia; when tracked)
-  /// The stability changed without a load extremum: the eigenvalue nearest zero changed sign,
-  /// or the number of negative eigenvalues changed
+  /// The stability changed by more than a limit point explains: the eigenvalue nearest zero
+  /// changed sign, or the number of negative eigenvalues changed, while the tangent's load
+  /// component kept its sign (with it changing, by more than one eigenvalue)
   bool bifurcation = false;
 };
 

@@ -22,12 +22,17 @@
 #include <gelx/problem.h>
 #include <gelx/program.h>
 
+#include <cstdio>
+#include <dolfinx/common/MPI.h>
+
 namespace
 {
 /// How far the path is followed.
 struct Continuation
 {
   double descend_to = 0.8; ///< stop when the pressure has fallen to this fraction of its maximum
+  /// stop when the shell has left the spherical shape by this much (InflatedShell::asphericity)
+  double asphericity_max = 0.05;
   int max_steps = 200;     ///< largest number of arc-length steps
 };
 
@@ -58,11 +63,22 @@ int main(int argc, char* argv[])
            "rollers (Dirichlet) or constraints (multipoint) on the three symmetry planes",
            [](const std::string& v)
            { return v == "rollers" || v == "constraints" ? "" : "must be rollers or constraints"; });
+  prm.bind("geometry", "domain", p.domain,
+           "octant (three symmetry planes) or quarter (x, y >= 0: modes odd in z are free)",
+           [](const std::string& v)
+           { return v == "octant" || v == "quarter" ? "" : "must be octant or quarter"; });
   prm.bind("material", "G", p.G, "shear modulus", gelx::Parameters::positive);
   prm.bind("material", "K", p.K, "bulk modulus", gelx::Parameters::positive);
+  prm.bind("material", "C01_over_C10", p.C01_over_C10,
+           "Mooney-Rivlin C01/C10 (0: neo-Hookean); G = 2 (C10 + C01)",
+           [](double v) { return v >= 0 ? "" : "must be non-negative"; });
   prm.bind("continuation", "descend_to", c.descend_to,
            "stop when the pressure has fallen to this fraction of its maximum",
            [](double v) { return v > 0 && v < 1 ? "" : "must be in (0, 1)"; });
+  prm.bind("continuation", "asphericity_max", c.asphericity_max,
+           "stop when (largest - smallest) / mean inner radius exceeds this (the shell has "
+           "left the spherical shape)",
+           gelx::Parameters::positive);
   prm.bind("continuation", "max_steps", c.max_steps, "largest number of arc-length steps",
            gelx::Parameters::at_least_one);
 
@@ -99,6 +115,10 @@ int main(int argc, char* argv[])
     //    resolve the path with 2-5 corrector iterations each (override with -arclength_ds ...)
     gelx::set_default_option("arclength_", "ds", "0.5");
     gelx::set_default_option("arclength_", "ds_max", "6");
+    // Every point's stability from the inertia of the tangent the next predictor factorises
+    // anyway: past the maximum one eigenvalue is negative (the limit point's); a thin sphere
+    // then loses sphericity where another crosses zero, a bifurcation the path stops at
+    gelx::set_default_option("arclength_", "stability", "inertia");
     gelx::FieldSet fields;
     fields.add("displacement", shell.displacement());
     gelx::ArcLength continuation(run.comm(), shell.system(),
@@ -126,7 +146,15 @@ int main(int argc, char* argv[])
                                 {"iterations", pt.newton.iterations},
                                 {"cutbacks", pt.cutbacks},
                                 {"limit_point", pt.limit_point},
+                                {"asphericity", shell.asphericity()},
+                                {"negative_eigenvalues", pt.negative_eigenvalues},
+                                {"bifurcation", pt.bifurcation},
                                 {"wall_time", pt.wall_time}});
+           if (pt.bifurcation)
+             run.summary["bifurcation"] = {{"step", pt.step},
+                                           {"pressure_over_G", pt.load},
+                                           {"inner_stretch", la},
+                                           {"negative_eigenvalues", pt.negative_eigenvalues}};
            run.summary.update(
                {{"steps", pt.step},
                 {"final_pressure_over_G", pt.load},
@@ -139,6 +167,37 @@ int main(int argc, char* argv[])
          run.checkpoints()},
         [&](const gelx::StepRecord& pt)
         {
+          // At a bifurcation the spherical path goes on, but unstable in one more mode: the
+          // shell the scene models (symmetric about its three planes) takes the other branch
+          if (pt.bifurcation)
+          {
+            if (dolfinx::MPI::rank(run.comm()) == 0)
+              std::printf("gelx-inflation: bifurcation between steps %d and %d (p/G = %.6g, "
+                          "%d negative eigenvalues): the sphere loses sphericity; the "
+                          "spherical path stops here\n",
+                          pt.step - 1, pt.step, pt.load, pt.negative_eigenvalues);
+            return true;
+          }
+          // The mesh is an imperfection: a bifurcation can turn into a smooth departure from
+          // the sphere, with the second eigenvalue crossing at a load extremum (which the
+          // inertia test counts as a limit point). The shape says it: the path stops once
+          // the inner radius varies by asphericity_max over the surface
+          const double departure = shell.asphericity();
+          if (departure > c.asphericity_max)
+          {
+            run.summary["lost_sphericity"] = {{"step", pt.step},
+                                              {"pressure_over_G", pt.load},
+                                              {"inner_stretch", shell.inner_stretch()},
+                                              {"asphericity", departure},
+                                              {"negative_eigenvalues",
+                                               pt.negative_eigenvalues}};
+            if (dolfinx::MPI::rank(run.comm()) == 0)
+              std::printf("gelx-inflation: the shell left the spherical shape at step %d "
+                          "(p/G = %.6g, inner radius varies by %.3g of its mean, %d negative "
+                          "eigenvalues); the path stops here\n",
+                          pt.step, pt.load, departure, pt.negative_eigenvalues);
+            return true;
+          }
           const auto curve = path.scene.value("curve", Curve{});
           const double peak = *std::max_element(curve.pressure.begin(), curve.pressure.end());
           return curve.passed_maximum && pt.load < c.descend_to * peak;
@@ -149,8 +208,11 @@ int main(int argc, char* argv[])
     const std::size_t k = std::max_element(curve.pressure.begin(), curve.pressure.end())
                           - curve.pressure.begin();
     if (!curve.passed_maximum || k == 0 || k + 1 == curve.pressure.size())
-      throw gelx::ConvergenceError("the path did not pass the pressure maximum in "
-                                   + std::to_string(path.step) + " steps");
+      throw gelx::ConvergenceError(
+          run.summary.contains("bifurcation") || run.summary.contains("lost_sphericity")
+              ? "the path stopped at a bifurcation before it passed the pressure maximum"
+              : "the path did not pass the pressure maximum in " + std::to_string(path.step)
+                    + " steps");
     const double la3[3] = {curve.stretch[k - 1], curve.stretch[k], curve.stretch[k + 1]};
     const double p3[3] = {curve.pressure[k - 1], curve.pressure[k], curve.pressure[k + 1]};
     const auto [la_max, lambda_max] = gelx::parabola_vertex(la3, p3);

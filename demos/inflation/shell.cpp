@@ -12,13 +12,22 @@ using namespace dolfinx;
 namespace gelx::scenes
 {
 
+namespace
+{
+/// The .geo parameters of the shell's domain
+std::map<std::string, double> geometry_parameters(const ShellParameters& p)
+{
+  std::map<std::string, double> geo = {{"A", p.A}, {"B", p.B}, {"h", p.h}};
+  if (p.domain == "sector")
+    geo["t"] = p.t;
+  else
+    geo["lower"] = p.domain == "quarter" ? 1 : 0;
+  return geo;
+}
+} // namespace
+
 InflatedShell::InflatedShell(MPI_Comm comm, const std::string& geo_file, ShellParameters p)
-    : _p(p), _geo(read_geo(comm, geo_file,
-                           p.domain == "sector"
-                               ? std::map<std::string, double>{{"A", p.A}, {"B", p.B},
-                                                               {"h", p.h}, {"t", p.t}}
-                               : std::map<std::string, double>{{"A", p.A}, {"B", p.B},
-                                                               {"h", p.h}}))
+    : _p(p), _geo(read_geo(comm, geo_file, geometry_parameters(p)))
 {
   auto V = std::make_shared<fem::FunctionSpace>(
       fem::create_functionspace(functionspace_form_sphere_residual, "u", _geo.mesh));
@@ -33,8 +42,8 @@ InflatedShell::InflatedShell(MPI_Comm comm, const std::string& geo_file, ShellPa
                                                                        {"rho", p.rho}});
   _forms->add_subdomains(fem::IntegralType::exterior_facet, _geo.facet_tags);
   _bcs = std::make_unique<DirichletConditions>(V, _geo.facet_tags);
-  // The planes and their normals: x = 0, y = 0, then z = 0 (octant) or the sides x = t z,
-  // y = t z (sector)
+  // The planes and their normals: x = 0, y = 0, then z = 0 (octant), none (quarter) or the
+  // sides x = t z, y = t z (sector)
   std::vector<std::pair<int, std::array<double, 3>>> planes
       = {{_geo.tag("sym_x"), {1, 0, 0}}, {_geo.tag("sym_y"), {0, 1, 0}}};
   if (p.domain == "sector")
@@ -43,7 +52,7 @@ InflatedShell::InflatedShell(MPI_Comm comm, const std::string& geo_file, ShellPa
     planes.push_back({_geo.tag("side_x"), {1 / n, 0, -p.t / n}});
     planes.push_back({_geo.tag("side_y"), {0, 1 / n, -p.t / n}});
   }
-  else
+  else if (p.domain == "octant")
     planes.push_back({_geo.tag("sym_z"), {0, 0, 1}});
   // Axis-aligned planes as rollers, unless asked for as constraints; inclined ones always
   // constrained
@@ -56,6 +65,16 @@ InflatedShell::InflatedShell(MPI_Comm comm, const std::string& geo_file, ShellPa
     else
       constrained.push_back({tag, normal});
   }
+  // The quarter is free to translate along z: its one rigid motion, pinned at the inner
+  // surface's nodes on the plane y = 0 within h/2 of the equator (one or two vertices and
+  // their edge nodes: the mesh need not have a node at z = 0 exactly)
+  if (p.domain == "quarter")
+    _bcs->fix(_geo.tag("sym_y"), 2,
+              [&](const std::array<double, 3>& X)
+              {
+                return std::abs(std::hypot(X[0], X[1], X[2]) - p.A) < 1e-6 * p.A
+                       && std::abs(X[2]) < 0.5 * p.h;
+              });
   _bcs->update(0);
   _problem = std::make_unique<NonlinearProblem>(
       _u, _forms->form(form_sphere_residual, {V}), _forms->form(form_sphere_tangent, {V, V}),
@@ -102,6 +121,24 @@ double InflatedShell::inner_stretch() const
   }
   MPI_Allreduce(MPI_IN_PLACE, sum, 2, MPI_DOUBLE, MPI_SUM, _geo.mesh->comm());
   return sum[0] / sum[1];
+}
+
+double InflatedShell::asphericity() const
+{
+  double range[2] = {-INFINITY, -INFINITY}; // -min, max
+  double sum[2] = {0, static_cast<double>(_inner_nodes.size())};
+  for (std::int32_t n : _inner_nodes)
+  {
+    const double r = std::hypot(_X[3 * n] + _u->x()->array()[3 * n],
+                                _X[3 * n + 1] + _u->x()->array()[3 * n + 1],
+                                _X[3 * n + 2] + _u->x()->array()[3 * n + 2]);
+    range[0] = std::max(range[0], -r);
+    range[1] = std::max(range[1], r);
+    sum[0] += r;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, range, 2, MPI_DOUBLE, MPI_MAX, _geo.mesh->comm());
+  MPI_Allreduce(MPI_IN_PLACE, sum, 2, MPI_DOUBLE, MPI_SUM, _geo.mesh->comm());
+  return (range[1] + range[0]) / (sum[0] / sum[1]);
 }
 
 std::shared_ptr<fem::Form<double>> InflatedShell::mass_form() const

@@ -38,8 +38,10 @@ struct ShellParameters
   /// constraints)
   std::string symmetry = "rollers";
   /// The part of the shell modelled: "octant" (meshes/sphere_shell.geo: three symmetry
-  /// planes) or "sector" (meshes/sphere_sector.geo: 0 <= x, y <= t z, its inclined sides
-  /// held by slip constraints), which carries only spherically symmetric deformations
+  /// planes), "quarter" (the same file with lower = 1: x, y >= 0, two planes, so that modes
+  /// odd in z, a pear shape, are free) or "sector" (meshes/sphere_sector.geo: 0 <= x, y <= t z,
+  /// its inclined sides held by slip constraints), which carries only spherically symmetric
+  /// deformations
   std::string domain = "octant";
   double t = 0.1; ///< the sector's half-width tan(angle) (domain "sector")
 };
@@ -61,6 +63,9 @@ public:
 
   /// Mean current radius of the inner surface's vertices over A: the inner hoop stretch.
   double inner_stretch() const;
+  /// (largest - smallest) / mean of the inner surface's vertex radii: 0 for a sphere, a
+  /// measure of how far the shell has left the spherical shape. Collective.
+  double asphericity() const;
 
   /// The consistent mass matrix's form, rho inner(du, v) dx (gelx::DampedDynamics).
   std::shared_ptr<dolfinx::fem::Form<double>> mass_form() const;

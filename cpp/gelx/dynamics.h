@@ -108,9 +108,10 @@ struct DynamicsSummary
 /// The system may be the problem or a decorator of it (a contact, a reduced space of
 /// constraints: the mass is then P^T M P, NonlinearSystem::restrict_operator), not a bordered
 /// system with unknowns of its own (the arc-length's load). commit() is called once per
-/// accepted step, not per Newton iteration (a contact active set moves once per step). No restart yet: TSBDF's history (the previous states) cannot be
-/// handed back to PETSc, so a continued run would restart at order 1 and leave the
-/// uninterrupted path at the time-integration tolerance.
+/// accepted step, not per Newton iteration (a contact active set moves once per step). No
+/// restart yet: TSBDF's history (the previous states) cannot be handed back to PETSc, so a
+/// continued run would restart at order 1 and leave the uninterrupted path at the
+/// time-integration tolerance.
 class DampedDynamics
 {
 public:

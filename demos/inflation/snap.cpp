@@ -182,7 +182,8 @@ int main(int argc, char* argv[])
       nlohmann::json r = row;
       r.update({{"pressure_over_G", pressure},
                  {"inner_stretch", la},
-                 {"closed_form_pressure_over_G", InflatedShell::closed_form_pressure(p, la) / p.G}});
+                 {"closed_form_pressure_over_G",
+                  InflatedShell::closed_form_pressure(p, la) / p.G}});
       c.rows.push_back(r);
     };
 

@@ -121,6 +121,7 @@ int main(int argc, char* argv[])
     gelx::set_default_option("arclength_", "stability", "inertia");
     gelx::FieldSet fields;
     fields.add("displacement", shell.displacement());
+    double departure = 0; // the last point's asphericity (the observer's, for the stop test)
     gelx::ArcLength continuation(run.comm(), shell.system(),
                                  [&](double l) { shell.set_load_factor(l); });
     gelx::PathState path = run.start_path(shell.system());
@@ -130,6 +131,7 @@ int main(int argc, char* argv[])
          {
            auto curve = state.scene.value("curve", Curve{});
            const double la = shell.inner_stretch();
+           departure = shell.asphericity();
            curve.stretch.push_back(la);
            curve.pressure.push_back(pt.load);
            curve.passed_maximum = curve.passed_maximum || pt.limit_point;
@@ -146,7 +148,7 @@ int main(int argc, char* argv[])
                                 {"iterations", pt.newton.iterations},
                                 {"cutbacks", pt.cutbacks},
                                 {"limit_point", pt.limit_point},
-                                {"asphericity", shell.asphericity()},
+                                {"asphericity", departure},
                                 {"negative_eigenvalues", pt.negative_eigenvalues},
                                 {"bifurcation", pt.bifurcation},
                                 {"wall_time", pt.wall_time}});
@@ -182,7 +184,6 @@ int main(int argc, char* argv[])
           // the sphere, with the second eigenvalue crossing at a load extremum (which the
           // inertia test counts as a limit point). The shape says it: the path stops once
           // the inner radius varies by asphericity_max over the surface
-          const double departure = shell.asphericity();
           if (departure > c.asphericity_max)
           {
             run.summary["lost_sphericity"] = {{"step", pt.step},

@@ -87,6 +87,8 @@ InflatedShell::InflatedShell(MPI_Comm comm, const std::string& geo_file, ShellPa
     _symmetry->finalize();
   }
 
+  _strain_energy = _forms->form(form_sphere_strain_energy, {});
+
   _X = V->tabulate_dof_coordinates(false);
   const std::int32_t owned = V->dofmap()->index_map->size_local();
   // The inner surface's owned nodes that lie on the sphere r = A: its vertices. The P2
@@ -109,23 +111,9 @@ NonlinearSystem& InflatedShell::system()
 
 void InflatedShell::set_load_factor(double lambda) { _forms->set("p", lambda * _p.G); }
 
-double InflatedShell::inner_stretch() const
+InflatedShell::InnerRadii InflatedShell::inner_radii() const
 {
-  double sum[2] = {0, static_cast<double>(_inner_nodes.size())};
-  for (std::int32_t n : _inner_nodes)
-  {
-    double r2 = 0;
-    for (int i = 0; i < 3; ++i)
-      r2 += std::pow(_X[3 * n + i] + _u->x()->array()[3 * n + i], 2);
-    sum[0] += std::sqrt(r2) / _p.A;
-  }
-  MPI_Allreduce(MPI_IN_PLACE, sum, 2, MPI_DOUBLE, MPI_SUM, _geo.mesh->comm());
-  return sum[0] / sum[1];
-}
-
-double InflatedShell::asphericity() const
-{
-  double range[2] = {-INFINITY, -INFINITY}; // -min, max
+  double range[2] = {-INFINITY, -INFINITY}; // -smallest, largest
   double sum[2] = {0, static_cast<double>(_inner_nodes.size())};
   for (std::int32_t n : _inner_nodes)
   {
@@ -138,7 +126,15 @@ double InflatedShell::asphericity() const
   }
   MPI_Allreduce(MPI_IN_PLACE, range, 2, MPI_DOUBLE, MPI_MAX, _geo.mesh->comm());
   MPI_Allreduce(MPI_IN_PLACE, sum, 2, MPI_DOUBLE, MPI_SUM, _geo.mesh->comm());
-  return (range[1] + range[0]) / (sum[0] / sum[1]);
+  return {-range[0], range[1], sum[0] / sum[1]};
+}
+
+double InflatedShell::inner_stretch() const { return inner_radii().mean / _p.A; }
+
+double InflatedShell::asphericity() const
+{
+  const InnerRadii r = inner_radii();
+  return (r.largest - r.smallest) / r.mean;
 }
 
 std::shared_ptr<fem::Form<double>> InflatedShell::mass_form() const
@@ -149,7 +145,7 @@ std::shared_ptr<fem::Form<double>> InflatedShell::mass_form() const
 
 double InflatedShell::strain_energy() const
 {
-  return assemble_global_scalar(*_forms->form(form_sphere_strain_energy, {}));
+  return assemble_global_scalar(*_strain_energy);
 }
 
 double InflatedShell::closed_form_pressure(const ShellParameters& p, double la)

@@ -96,7 +96,15 @@ private:
   std::unique_ptr<DirichletConditions> _bcs;
   std::unique_ptr<NonlinearProblem> _problem;
   std::unique_ptr<MultipointConstraint> _symmetry;
+  /// The stored-energy functional, built once (DampedDynamics evaluates it every step)
+  std::shared_ptr<dolfinx::fem::Form<double>> _strain_energy;
   std::vector<std::int32_t> _inner_nodes; // owned vertices of the inner surface
+  /// The current radii of the inner surface's vertices, all ranks. Collective.
+  struct InnerRadii
+  {
+    double smallest, largest, mean;
+  };
+  InnerRadii inner_radii() const;
   std::vector<double> _X;                 // reference coordinates of the nodes
 };
 

@@ -81,10 +81,21 @@ CASES = {
         ("grid_min_above_max", ["--eps_min", "0.5", "--eps_max", "0.2"], "min < max"),
         ("one_peo_value", ["--peo_chi_A", "0.5"], "needs all seven"),
     ],
+    "bistrip": [
+        ("missing_mesh", ["--mesh", str(work / "no-such.geo")], "not found"),
+        ("stretch_below_one", ["--stretch", "0.9"], "strip A must be stretched"),
+        ("negative_modulus", ["--G", "-1.5"], "'G' = -1.5: must be positive"),
+        ("degree_three", ["--degree", "3"], "'degree' = 3: must be 1 or 2"),
+        ("unknown_ends", ["--ends", "glued"], "must be clamped or free"),
+        ("end_distance_beyond_L", ["--end_distance", "300"], "end_distance must be below L"),
+        ("seed_mode_not_computed", ["--modes", "2", "--seed_mode", "3"],
+         "seed_mode must be one of the computed modes"),
+    ],
 }
 TWO_RANKS = {"block": ["missing_mesh", "dt_above_dt_max"], "pyramid": ["W_below_L"],
              "inflation": ["B_equal_A"], "buckling": ["ty_equal_tx"],
-             "fiber_gel": ["cell_narrower_than_fiber", "phi_f_beyond_one"]}
+             "fiber_gel": ["cell_narrower_than_fiber", "phi_f_beyond_one"],
+             "bistrip": ["missing_mesh", "end_distance_beyond_L"]}
 
 # A valid scene file per scene (values other than the defaults, for a run of a few seconds),
 # with the status its run must end in. The buckling run stops after max_steps on its straight
@@ -96,6 +107,7 @@ SCENE_FILES = {
     "inflation": ({"h": "0.25", "descend_to": "0.99"}, "completed"),
     "buckling": ({"max_steps": "3", "modes": "2"}, "failed: no bifurcation found"),
     "fiber_gel": ({"l": "20", "L": "35", "D": "25", "h_fiber": "3", "h_far": "8"}, "completed"),
+    "bistrip": ({"ends": "free", "stretch": "1.02", "L": "60", "nz": "20"}, "completed"),
     "flory_rehner": ({"n_phi": "20", "n_eps": "11", "n_nu_vm": "0.01", "peo_n_grid": "5",
                       "alpha0": "0.77", "phi_i_max": "0.45"}, "completed"),
 }

@@ -134,6 +134,7 @@ public:
   /// The run's summary so far (complete after run()).
   const DynamicsSummary& summary() const { return _summary; }
   double loading_time() const { return _loading_time; }
+  double hold_time() const { return _hold_time; }
   double damping() const { return _damping; }
   TS ts() const { return _ts; }
 

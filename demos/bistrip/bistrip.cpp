@@ -1,0 +1,403 @@
+#include "bistrip.h"
+#include "prestretched_strip.h"
+
+#include <cmath>
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/utils.h>
+#include <gelx/collectives.h>
+#include <gelx/parameters.h>
+#include <gelx/prestretch.h>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+#include <xtensor/xtensor.hpp>
+
+using namespace dolfinx;
+
+namespace gelx::scenes
+{
+
+void BistripParameters::bind(Parameters& prm)
+{
+  prm.bind("geometry", "w", w, "width of each strip (mm; the thesis varies it, 5 to 9)",
+           Parameters::positive);
+  prm.bind("geometry", "h", h, "thickness of each strip before A is stretched (mm)",
+           Parameters::positive);
+  prm.bind("geometry", "L", L, "length (mm)", Parameters::positive);
+  prm.bind("geometry", "stretch", stretch,
+           "L / L': the stretch of strip A before bonding (1: no misfit)", Parameters::positive);
+  prm.bind("geometry", "ends", ends,
+           "clamped (z = 0 encastred, z = L a rigid face moving along z) or free",
+           [](const std::string& e)
+           { return e == "clamped" || e == "free" ? "" : "must be clamped or free"; });
+  prm.bind("material", "G", G, "shear modulus (MPa)", Parameters::positive);
+  prm.bind("material", "K", K, "bulk modulus (MPa)", Parameters::positive);
+  prm.bind("material", "rho", rho, "mass density (damped dynamics only)", Parameters::positive);
+  prm.bind("mesh", "degree", degree, "displacement element: 2 (Q2 hexahedra) or 1 (Q1)",
+           [](int d) { return d == 1 || d == 2 ? "" : "must be 1 or 2"; });
+  prm.bind("mesh", "nz", nz, "cell layers (slabs) along the strip", Parameters::at_least_one);
+  prm.bind("mesh", "nx", nx, "cells across strip A's width", Parameters::at_least_one);
+  prm.bind("mesh", "ns", ns, "cells across each of B's overhangs", Parameters::at_least_one);
+  prm.bind("mesh", "nb", nb, "cells through B's thickness", Parameters::at_least_one);
+  prm.bind("mesh", "na", na, "cells through A's thickness", Parameters::at_least_one);
+}
+
+void BistripParameters::check() const
+{
+  if (stretch < 1)
+    throw InputError("stretch = " + std::to_string(stretch)
+                     + ": strip A must be stretched (>= 1) before bonding");
+  if (ends == "free" && (nz % 2 != 0 && degree == 1))
+    throw InputError("free ends need a node layer at z = L/2: an even nz with Q1");
+}
+
+double uniaxial_lateral_stretch(double stretch, double G, double K)
+{
+  const auto lateral_stress = [&](double l)
+  {
+    const double J = stretch * l * l, I1 = stretch * stretch + 2 * l * l;
+    return G * std::pow(J, -5.0 / 3.0) * (l * l - I1 / 3) + K * (J - 1);
+  };
+  // sigma_lateral < 0 at l -> 0 (J -> 0), > 0 at l = 1 for stretch >= 1 (J >= 1, l^2 >= I1/3
+  // fails only by the deviatoric part, which K (J - 1) outweighs once l is large enough)
+  double lo = 1e-3, hi = std::max(1.0, 2.0 / std::sqrt(stretch));
+  while (lateral_stress(hi) < 0)
+    hi *= 2;
+  for (int i = 0; i < 200 && hi - lo > 1e-15; ++i)
+  {
+    const double mid = 0.5 * (lo + hi);
+    (lateral_stress(mid) < 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double BistripParameters::lateral_stretch() const
+{
+  return uniaxial_lateral_stretch(stretch, G, K);
+}
+
+namespace
+{
+/// Tags of meshes/bistrip.geo
+constexpr int strip_A = 1, fixed_end = 1, moving_end = 2;
+
+std::map<std::string, double> geometry_parameters(const BistripParameters& p)
+{
+  return {{"w", p.w},   {"h", p.h},   {"L", p.L},   {"lt", p.lateral_stretch()},
+          {"nz", p.nz}, {"nx", p.nx}, {"ns", p.ns}, {"nb", p.nb},
+          {"na", p.na}};
+}
+
+/// A node's place in the structured mesh, from its reference position: its layer along z and
+/// its cross-section position to 1e-3 mm (the mirror image of a node is the node with the
+/// same cross-section position in layer `layers - 1 - layer`; gmsh's extruded layers repeat
+/// the section's coordinates to about 1e-7 mm, and nodes are over 0.1 mm apart)
+std::tuple<int, std::int64_t, std::int64_t> node_key(const double* X, double layer_spacing)
+{
+  return {static_cast<int>(std::lround(X[2] / layer_spacing)), std::llround(X[0] * 1e3),
+          std::llround(X[1] * 1e3)};
+}
+
+/// The generated kernels of one displacement element (forms/prestretched_strip.py)
+struct Kernels
+{
+  const char* u; ///< the displacement coefficient's name
+  ufcx_function_space* (*space)(const char*);
+  ufcx_function_space* (*cell_space)(const char*); ///< the DG0 space of cell_energy
+  const ufcx_form *residual, *tangent, *mass, *energy_A, *energy_B, *cell_energy;
+  const ufcx_expression *stress, *psi, *psi_section, *det_F;
+};
+
+const Kernels& kernels(int degree)
+{
+  static const Kernels q1{"u_q1",
+                          functionspace_form_prestretched_strip_residual_q1,
+                          functionspace_form_prestretched_strip_cell_energy_q1,
+                          form_prestretched_strip_residual_q1,
+                          form_prestretched_strip_tangent_q1,
+                          form_prestretched_strip_mass_q1,
+                          form_prestretched_strip_energy_A_q1,
+                          form_prestretched_strip_energy_B_q1,
+                          form_prestretched_strip_cell_energy_q1,
+                          expression_prestretched_strip_stress_q1,
+                          expression_prestretched_strip_psi_q1,
+                          expression_prestretched_strip_psi_section_q1,
+                          expression_prestretched_strip_det_F_q1};
+  static const Kernels q2{"u_q2",
+                          functionspace_form_prestretched_strip_residual_q2,
+                          functionspace_form_prestretched_strip_cell_energy_q2,
+                          form_prestretched_strip_residual_q2,
+                          form_prestretched_strip_tangent_q2,
+                          form_prestretched_strip_mass_q2,
+                          form_prestretched_strip_energy_A_q2,
+                          form_prestretched_strip_energy_B_q2,
+                          form_prestretched_strip_cell_energy_q2,
+                          expression_prestretched_strip_stress_q2,
+                          expression_prestretched_strip_psi_q2,
+                          expression_prestretched_strip_psi_section_q2,
+                          expression_prestretched_strip_det_F_q2};
+  return degree == 1 ? q1 : q2;
+}
+} // namespace
+
+Bistrip::Bistrip(MPI_Comm comm, const std::string& geo_file, BistripParameters p)
+    : _p(p), _geo(read_geo(comm, geo_file, geometry_parameters(p))), _end_distance(p.L)
+{
+  const Kernels& k = kernels(p.degree);
+  auto V = std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(k.space, k.u, _geo.mesh));
+  _u = std::make_shared<fem::Function<double>>(V);
+  _u->name = "displacement";
+
+  // Strip A's prestretch: F0 maps the bonded (mesh) state to A's stress-free state, its
+  // natural length L / stretch and its unshrunk cross-section
+  _F0 = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(k.space, "F0", _geo.mesh)));
+  const double lt = p.lateral_stretch();
+  set_prestretch(*_F0, *_geo.cell_tags,
+                 {{strip_A, {1 / lt, 0, 0, 0, 1 / lt, 0, 0, 0, 1 / p.stretch}}});
+
+  _forms = std::make_unique<FormBinding>(
+      _geo.mesh, FormBinding::Coefficients{{k.u, _u}, {"F0", _F0}},
+      std::map<std::string, double>{{"G", p.G}, {"K", p.K}, {"rho", p.rho}});
+  _forms->add_subdomains(fem::IntegralType::cell, _geo.cell_tags);
+
+  _bcs = std::make_unique<DirichletConditions>(V, _geo.facet_tags);
+  std::vector<std::shared_ptr<const fem::DirichletBC<double>>> bcs;
+  if (p.ends == "clamped")
+  {
+    _bcs->clamp(fixed_end);
+    _bcs->fix(moving_end, 0);
+    _bcs->fix(moving_end, 1);
+    _bcs->prescribe(moving_end, 2, [this](double, const std::array<double, 3>&)
+                    { return _end_distance - _p.L; });
+    _bcs->update(0);
+    bcs = _bcs->bcs();
+  }
+  else
+  {
+    // Free: only the rigid motions are held, by conditions the free strip's symmetries
+    // satisfy exactly: u1 = 0 on the plane x = 0, u3 = 0 on the mid-section z = L/2, and
+    // u2 = 0 on the line where the two meet the interface y = 0
+    const auto plane = [&](int component, std::function<bool(const double*)> where)
+    {
+      auto Vc = V->sub({component});
+      auto [collapsed, map] = Vc->collapse();
+      auto dofs = fem::locate_dofs_geometrical(
+          {*Vc, collapsed},
+          [&](const xt::xtensor<double, 2>& x)
+          {
+            auto marked = xt::xtensor<bool, 1>::from_shape({x.shape(1)});
+            for (std::size_t i = 0; i < x.shape(1); ++i)
+            {
+              const double X[3] = {x(0, i), x(1, i), x(2, i)};
+              marked(i) = where(X);
+            }
+            return marked;
+          });
+      auto zero = std::make_shared<fem::Function<double>>(
+          std::make_shared<fem::FunctionSpace>(std::move(collapsed)));
+      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(zero, std::move(dofs), Vc));
+    };
+    const double tol = 1e-8 * p.L;
+    plane(0, [=](const double* X) { return std::abs(X[0]) < tol; });
+    plane(2, [=](const double* X) { return std::abs(X[2] - p.L / 2) < tol; });
+    plane(1, [=](const double* X)
+          {
+            return std::abs(X[0]) < tol && std::abs(X[1]) < tol
+                   && std::abs(X[2] - p.L / 2) < tol;
+          });
+  }
+  _problem = std::make_unique<NonlinearProblem>(
+      _u, _forms->form(k.residual, {V}), _forms->form(k.tangent, {V, V}), bcs,
+      _forms->expression(k.det_F));
+
+  _energy_A = _forms->form(k.energy_A);
+  _energy_B = _forms->form(k.energy_B);
+  auto cells = std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(k.cell_space, "v_0", _geo.mesh));
+  _cell_energy = _forms->form(k.cell_energy, {cells});
+  _psi_section = _forms->expression(k.psi_section);
+
+  // Each owned cell's slab (by its midpoint) and strip
+  const auto& mesh = *_geo.mesh;
+  const std::int32_t owned_cells = mesh.topology().index_map(3)->size_local();
+  const auto& x = mesh.geometry().x();
+  const auto& cell_nodes = mesh.geometry().dofmap();
+  std::vector<int> strip_of(owned_cells, 2);
+  for (std::size_t i = 0; i < _geo.cell_tags->indices().size(); ++i)
+    if (_geo.cell_tags->indices()[i] < owned_cells)
+      strip_of[_geo.cell_tags->indices()[i]] = _geo.cell_tags->values()[i];
+  for (std::int32_t c = 0; c < owned_cells; ++c)
+  {
+    double z = 0;
+    for (std::int32_t node : cell_nodes.links(c))
+      z += x[3 * node + 2];
+    z /= cell_nodes.links(c).size();
+    _slab_of_cell.push_back(std::min(p.nz - 1, static_cast<int>(z / p.L * p.nz)));
+    _strip_of_cell.push_back(strip_of[c]);
+  }
+  _X = V->tabulate_dof_coordinates(false);
+}
+
+void Bistrip::set_end_distance(double d)
+{
+  _end_distance = d;
+  _bcs->update(0);
+}
+
+double Bistrip::end_force() const
+{
+  return boundary_resultant(*_problem, *_geo.facet_tags, moving_end).force[2];
+}
+
+std::pair<double, double> Bistrip::strip_energies() const
+{
+  return {assemble_global_scalar(*_energy_A), assemble_global_scalar(*_energy_B)};
+}
+
+double Bistrip::strain_energy() const
+{
+  const auto [A, B] = strip_energies();
+  return A + B;
+}
+
+std::vector<std::pair<double, double>> Bistrip::slab_energies() const
+{
+  const auto& dofmap = *_cell_energy->function_spaces()[0]->dofmap();
+  std::vector<double> cell_energy(
+      (dofmap.index_map->size_local() + dofmap.index_map->num_ghosts()) * dofmap.index_map_bs(),
+      0.0);
+  fem::assemble_vector<double>(cell_energy, *_cell_energy);
+  std::vector<double> slabs(2 * _p.nz, 0.0); // A and B, slab after slab
+  for (std::size_t c = 0; c < _slab_of_cell.size(); ++c)
+    slabs[2 * _slab_of_cell[c] + (_strip_of_cell[c] == strip_A ? 0 : 1)]
+        += cell_energy[dofmap.cell_dofs(c)[0]];
+  MPI_Allreduce(MPI_IN_PLACE, slabs.data(), slabs.size(), MPI_DOUBLE, MPI_SUM, _geo.mesh->comm());
+  std::vector<std::pair<double, double>> result(_p.nz);
+  for (int n = 0; n < _p.nz; ++n)
+    result[n] = {slabs[2 * n], slabs[2 * n + 1]};
+  return result;
+}
+
+std::vector<Bistrip::SectionPoint> Bistrip::section_energy(int slab) const
+{
+  std::vector<std::int32_t> cells;
+  for (std::size_t c = 0; c < _slab_of_cell.size(); ++c)
+    if (_slab_of_cell[c] == slab)
+      cells.push_back(c);
+  xt::xtensor<double, 2> psi({cells.size(), 25});
+  _psi_section->eval(std::span<const std::int32_t>(cells), psi);
+  // The grid's reference points (forms/bistrip.py: 5 x 5, x fastest) mapped by the cell's
+  // extent in x and y: the cells are the extrusion of axis-aligned rectangles. Reference
+  // coordinates of the mesh before any imperfection: the cell's bounding box is good to the
+  // imperfection's amplitude
+  const auto& x = _geo.mesh->geometry().x();
+  const auto& cell_nodes = _geo.mesh->geometry().dofmap();
+  std::vector<double> local; // x, y, strip, psi
+  for (std::size_t i = 0; i < cells.size(); ++i)
+  {
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (std::int32_t node : cell_nodes.links(cells[i]))
+      for (int d = 0; d < 2; ++d)
+      {
+        lo[d] = std::min(lo[d], x[3 * node + d]);
+        hi[d] = std::max(hi[d], x[3 * node + d]);
+      }
+    for (int j = 0; j < 25; ++j)
+      local.insert(local.end(), {lo[0] + (j % 5 + 0.5) / 5 * (hi[0] - lo[0]),
+                                 lo[1] + (j / 5 + 0.5) / 5 * (hi[1] - lo[1]),
+                                 double(_strip_of_cell[cells[i]]), psi(i, j)});
+  }
+  const std::vector<double> all = all_gather(_geo.mesh->comm(), local);
+  std::vector<SectionPoint> points;
+  for (std::size_t i = 0; i < all.size(); i += 4)
+    points.push_back({all[i], all[i + 1], all[i + 2] == strip_A ? 'A' : 'B', all[i + 3]});
+  return points;
+}
+
+CentrelineSamples Bistrip::centreline() const
+{
+  // Per node layer: the sum of the owned nodes' positions and their number, and the positions
+  // of the interface's two edges x = -w/2 and x = w/2 (y = 0)
+  const int layers = _p.degree * _p.nz + 1;
+  const double spacing = _p.L / (layers - 1);
+  std::vector<double> sums(layers * 10, 0.0); // centre (3), count, minus edge (3), plus (3)
+  const std::int32_t owned = space()->dofmap()->index_map->size_local();
+  const auto& u = _u->x()->array();
+  // Positions on the current mesh, which carries the imperfection if one was seeded
+  const std::vector<double> X = space()->tabulate_dof_coordinates(false);
+  const double tol = 1e-6 * _p.w;
+  for (std::int32_t n = 0; n < owned; ++n)
+  {
+    const auto [layer, ix, iy] = node_key(&_X[3 * n], spacing);
+    double* s = &sums[10 * layer];
+    for (int i = 0; i < 3; ++i)
+      s[i] += X[3 * n + i] + u[3 * n + i];
+    s[3] += 1;
+    if (std::abs(_X[3 * n + 1]) < tol && std::abs(std::abs(_X[3 * n]) - _p.w / 2) < tol)
+      for (int i = 0; i < 3; ++i)
+        s[(_X[3 * n] < 0 ? 4 : 7) + i] = X[3 * n + i] + u[3 * n + i];
+  }
+  MPI_Allreduce(MPI_IN_PLACE, sums.data(), sums.size(), MPI_DOUBLE, MPI_SUM, _geo.mesh->comm());
+  CentrelineSamples samples;
+  for (int k = 0; k < layers; ++k)
+  {
+    const double* s = &sums[10 * k];
+    samples.Z.push_back(k * spacing);
+    samples.centre.push_back({s[0] / s[3], s[1] / s[3], s[2] / s[3]});
+    samples.width.push_back({s[7] - s[4], s[8] - s[5], s[9] - s[6]});
+  }
+  return samples;
+}
+
+std::pair<double, double> Bistrip::mirror_asymmetry(const fem::Function<double>& v) const
+{
+  const int layers = _p.degree * _p.nz + 1;
+  const double spacing = _p.L / (layers - 1);
+  const std::int32_t owned = space()->dofmap()->index_map->size_local();
+  std::vector<double> local; // layer, x key, y key, v (3)
+  for (std::int32_t n = 0; n < owned; ++n)
+  {
+    const auto [layer, ix, iy] = node_key(&_X[3 * n], spacing);
+    local.insert(local.end(), {double(layer), double(ix), double(iy), v.x()->array()[3 * n],
+                               v.x()->array()[3 * n + 1], v.x()->array()[3 * n + 2]});
+  }
+  const std::vector<double> all = all_gather(_geo.mesh->comm(), local);
+  std::map<std::tuple<int, std::int64_t, std::int64_t>, std::array<double, 3>> at;
+  for (std::size_t i = 0; i < all.size(); i += 6)
+    at[{int(all[i]), std::int64_t(all[i + 1]), std::int64_t(all[i + 2])}]
+        = {all[i + 3], all[i + 4], all[i + 5]};
+  double norm = 0, symmetric = 0, antisymmetric = 0;
+  for (const auto& [key, value] : at)
+  {
+    const auto& [layer, ix, iy] = key;
+    const std::array<double, 3>& image = at.at({layers - 1 - layer, ix, iy});
+    const double Sv[3] = {image[0], image[1], -image[2]};
+    for (int i = 0; i < 3; ++i)
+    {
+      norm += value[i] * value[i];
+      symmetric += std::pow(value[i] - Sv[i], 2);
+      antisymmetric += std::pow(value[i] + Sv[i], 2);
+    }
+  }
+  return {std::sqrt(symmetric / norm), std::sqrt(antisymmetric / norm)};
+}
+
+std::shared_ptr<fem::Form<double>> Bistrip::mass_form() const
+{
+  return _forms->form(kernels(_p.degree).mass, {space(), space()});
+}
+
+std::shared_ptr<fem::Expression<double>> Bistrip::stress() const
+{
+  return _forms->expression(kernels(_p.degree).stress);
+}
+
+std::shared_ptr<fem::Expression<double>> Bistrip::energy_density() const
+{
+  return _forms->expression(kernels(_p.degree).psi);
+}
+
+} // namespace gelx::scenes

@@ -1,0 +1,55 @@
+#pragma once
+/// @file centreline.h
+/// Helices and perversions read off a deformed strip: its centreline and material frame give
+/// curvature and twist along it; helical segments are the stretches of one sign of twist
+/// (one chirality), perversions the places where the sign changes.
+
+#include <array>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+namespace gelx::scenes
+{
+
+/// The deformed strip sampled at reference positions Z along it (increasing): the centroid
+/// of each cross-section and its width vector (a material line across the strip, here the
+/// interface's width: the frame's first director once made normal to the centreline).
+struct CentrelineSamples
+{
+  std::vector<double> Z;
+  std::vector<std::array<double, 3>> centre, width;
+};
+
+/// A stretch of the strip of one chirality.
+struct HelicalSegment
+{
+  double start, end; ///< reference positions
+  int chirality;     ///< +1 right-handed (twist > 0), -1 left-handed
+  double curvature, twist; ///< means over the segment (1/mm)
+  /// R = kappa / (kappa^2 + tau^2) and P = 2 pi |tau| / (kappa^2 + tau^2) of the helix with
+  /// the segment's mean curvature and twist
+  double radius, pitch;
+  double frame_turns; ///< int |tau| ds / (2 pi): how far the frame twists along it
+};
+
+struct CentrelineAnalysis
+{
+  /// At every sample: curvature |t'| and twist d1' . d2 of the frame (t, d1, d2 = t x d1), per
+  /// deformed arc length
+  std::vector<double> curvature, twist;
+  std::vector<HelicalSegment> segments;
+  /// Reference positions of the perversions: where the twist changes sign between two
+  /// segments (linear interpolation of the zero)
+  std::vector<double> perversions;
+  nlohmann::json to_json() const;
+};
+
+/// Curvature and twist by central differences; runs of one sign of twist are segments; a
+/// run whose frame turns by less than `min_frame_turns` is noise (the straight strip before
+/// it buckles, the clamps' boundary layers): the smallest such run is merged into its
+/// neighbours until none is left, so a perversion needs real helices of opposite hands on
+/// both its sides.
+CentrelineAnalysis analyse_centreline(const CentrelineSamples& samples,
+                                      double min_frame_turns = 0.25);
+
+} // namespace gelx::scenes

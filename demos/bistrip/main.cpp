@@ -1,0 +1,391 @@
+// gelx scene: the prestretched bistrip of thesis chapter 3 — helices, a perversion, and where
+// the strain energy goes
+//
+// Sample runs:
+//   ./gelx run bistrip                                    (the whole path, 30 -> 9 cm)
+//   ./gelx run bistrip --end_distance 200 --nz 60         (coarse, up to the first helices)
+//   ./gelx run bistrip --ends free --stretch 1.02 --L 60 --nz 20   (the small-misfit check)
+//
+// The model (thesis section 3.2-3.3, Table 3.1): strip B (lower, w x h) is stress-free; strip A
+// (upper) was stretched from its natural length L / stretch to L, its cross-section shrinking
+// by the lateral stretch of that uniaxial stretch (Fig. 3.10a), and bonded to B's top face. A
+// carries the stretch as its prestretch F0, so the bonded, straight strip is the reference
+// state. End z = 0 is encastred; end z = L moves along z as a rigid face that does not rotate.
+//
+//  1. Eigen-buckling about the bonded state (Fig. 3.1c): the first modes, their critical
+//     end shortening and their symmetry about the mid-plane z = L/2 (eigenvalues.csv, modes/).
+//  2. The mode to seed (mode 1 by default) is added to the mesh at the thesis' amplitude, as
+//     ABAQUS' *IMPERFECTION does.
+//  3. Damped quasi-static dynamics (gelx::DampedDynamics, ABAQUS' *STABILIZE) brings the ends
+//     together from L to the final end distance on a smooth-step ramp. At every output
+//     distance: end force, the strain energy of each strip, kinetic and dissipated energy, the
+//     work of the end force, the number of negative tangent eigenvalues, the helical segments
+//     and perversions read off the centreline (centreline.h), the energy of every slab (Fig.
+//     3.4b) and the shape coloured by von Mises stress (fields.xdmf).
+//  4. At the final distance: the energy density over three cross-sections (Fig. 3.6): a
+//     helical site, the edge and the centre of the perversion nearest mid-length.
+// With --ends free (no support, the misfit alone) the scene solves the bonded strip's free
+// equilibrium instead: the curvature of the bilayer (tests/bistrip.py checks it against
+// Timoshenko's bimetal formula).
+
+#include "bistrip.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <gelx/buckling.h>
+#include <gelx/dynamics.h>
+#include <gelx/newton.h>
+#include <gelx/output.h>
+#include <gelx/petsc_utils.h>
+#include <gelx/program.h>
+#include <sstream>
+
+namespace
+{
+struct Analysis
+{
+  std::string mesh = GELX_MESHES "/bistrip.geo";
+  double end_distance = 90;  ///< final end-to-end distance (mm)
+  double output_every = 10;  ///< output every this much of end travel (mm)
+  int modes = 5;             ///< buckling modes to compute
+  int seed_mode = 1;         ///< the mode seeded as the imperfection
+  /// Amplitude of the seeded mode (mm; largest component 1): the thesis' *IMPERFECTION
+  /// "1, 1e-3" in its length unit, the cm of Table 3.1
+  double imperfection = 0.01;
+  /// The shortening of the eigen-buckling's perturbation load (mm): small, so that the
+  /// tangent is still linear in it
+  double probe_shortening = 0.1;
+  double min_frame_turns = 0.25; ///< a helical segment's frame turns at least this much
+};
+
+/// "a;b;c": a list in one CSV cell
+std::string joined(const std::vector<double>& values)
+{
+  std::ostringstream s;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    s << (i ? ";" : "") << values[i];
+  return s.str();
+}
+
+/// The energy condensation of a slab profile E(n) (A and B summed): E~(n) = E(n) / min E - 1,
+/// and the peak of E~ within slabs [first, last] (around a perversion), its slab, and its
+/// extent: the slabs around the peak where E~ stays above half the peak (a double hump
+/// counts whole)
+struct Condensation
+{
+  std::vector<double> scaled;
+  double peak = NAN;
+  int peak_slab = -1, first_slab = -1, last_slab = -1;
+  int width() const { return last_slab - first_slab + 1; }
+};
+Condensation condensation(const std::vector<std::pair<double, double>>& slabs, int first,
+                          int last)
+{
+  Condensation c;
+  double least = INFINITY;
+  for (const auto& [A, B] : slabs)
+    least = std::min(least, A + B);
+  for (const auto& [A, B] : slabs)
+    c.scaled.push_back((A + B) / least - 1);
+  if (first > last)
+    return c;
+  c.peak_slab = std::max_element(c.scaled.begin() + first, c.scaled.begin() + last + 1)
+                - c.scaled.begin();
+  c.peak = c.scaled[c.peak_slab];
+  c.first_slab = c.last_slab = c.peak_slab;
+  while (c.first_slab > first && c.scaled[c.first_slab - 1] >= c.peak / 2)
+    --c.first_slab;
+  while (c.last_slab < last && c.scaled[c.last_slab + 1] >= c.peak / 2)
+    ++c.last_slab;
+  return c;
+}
+
+/// The index of the perversion nearest mid-length (P not empty)
+std::size_t central(const std::vector<double>& P, double L)
+{
+  return std::min_element(P.begin(), P.end(), [&](double x, double y)
+                          { return std::abs(x - L / 2) < std::abs(y - L / 2); })
+         - P.begin();
+}
+
+/// The condensation at the perversion nearest mid-length: the peak searched from the middle
+/// of the helical segment before it to the middle of the one after, so that the clamps'
+/// boundary layers (which hold the helices' ends flat, and store energy too) do not count
+/// as the perversion's; none without a perversion
+Condensation perversion_condensation(const std::vector<std::pair<double, double>>& slabs,
+                                     const gelx::scenes::CentrelineAnalysis& helices, double L)
+{
+  const int nz = slabs.size();
+  const auto& P = helices.perversions;
+  if (P.empty())
+    return condensation(slabs, 0, -1);
+  const std::size_t k = central(P, L);
+  // Perversion k lies between segments k and k + 1
+  const auto middle = [&](const gelx::scenes::HelicalSegment& s)
+  { return std::clamp(static_cast<int>(0.5 * (s.start + s.end) / L * nz), 0, nz - 1); };
+  return condensation(slabs, middle(helices.segments[k]), middle(helices.segments[k + 1]));
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  // 1. Scene parameters
+  gelx::scenes::BistripParameters p;
+  Analysis a;
+  gelx::Parameters prm;
+  p.bind(prm);
+  prm.bind("geometry", "mesh", a.mesh, "gmsh geometry file");
+  prm.bind("analysis", "end_distance", a.end_distance, "final end-to-end distance (mm)",
+           gelx::Parameters::positive);
+  prm.bind("analysis", "output_every", a.output_every, "output every this much end travel (mm)",
+           gelx::Parameters::positive);
+  prm.bind("analysis", "modes", a.modes, "buckling modes to compute",
+           gelx::Parameters::at_least_one);
+  prm.bind("analysis", "seed_mode", a.seed_mode, "the buckling mode seeded as imperfection",
+           gelx::Parameters::at_least_one);
+  prm.bind("analysis", "imperfection", a.imperfection,
+           "amplitude of the seeded mode (mm, its largest component 1)",
+           gelx::Parameters::non_negative);
+  prm.bind("analysis", "probe_shortening", a.probe_shortening,
+           "the eigen-buckling's perturbation: an end shortening (mm)", gelx::Parameters::positive);
+  prm.bind("analysis", "min_frame_turns", a.min_frame_turns,
+           "turns of the frame below which a stretch of one twist sign is noise",
+           gelx::Parameters::positive);
+
+  return gelx::run_program(argc, argv, "gelx-bistrip", prm, [&](gelx::Run& run)
+  {
+    p.check();
+    if (p.ends == "clamped" && a.end_distance >= p.L)
+      throw gelx::InputError("end_distance must be below L");
+    if (a.seed_mode > a.modes)
+      throw gelx::InputError("seed_mode must be one of the computed modes (1 .. modes)");
+
+    // 2. The bonded strip
+    gelx::scenes::Bistrip strip(run.comm(), a.mesh, p);
+    gelx::NonlinearProblem& problem = strip.problem();
+    const auto [energy_A0, energy_B0] = strip.strip_energies();
+    run.summary = {{"num_dofs", strip.space()->dofmap()->index_map->size_global() * 3},
+                   {"lateral_stretch", p.lateral_stretch()},
+                   {"prestress_energy", energy_A0 + energy_B0}};
+    gelx::FieldSet fields;
+    fields.add("displacement", strip.displacement());
+    fields.add("stress", strip.stress());
+    fields.add("energy_density", strip.energy_density());
+
+    if (p.ends == "free")
+    {
+      // The misfit alone: the free bilayer's equilibrium. Newton's linearised steps stretch
+      // the bending strip, so |R| grows on the way to the solution and a backtracking line
+      // search on |R| stalls (measured: 25 steps of 4 %); full Newton steps converge in 9
+      gelx::set_default_option("newton_", "snes_linesearch_type", "basic");
+      gelx::NewtonSolver newton(run.comm());
+      gelx::ResultsWriter& results = run.results(strip.mesh().mesh);
+      const gelx::NewtonReport report = newton.solve(problem);
+      if (!report.converged)
+        throw gelx::ConvergenceError("the free bilayer's equilibrium: " + report.reason);
+      results.write_fields(1, fields.update());
+      const gelx::scenes::CentrelineSamples c = strip.centreline();
+      std::vector<nlohmann::json> rows;
+      for (std::size_t k = 0; k < c.Z.size(); ++k)
+        rows.push_back({{"Z", c.Z[k]}, {"x", c.centre[k][0]}, {"y", c.centre[k][1]},
+                        {"z", c.centre[k][2]}});
+      results.write_table("centreline.csv", rows);
+      run.summary["newton_iterations"] = report.iterations;
+      return;
+    }
+
+    // 3. Eigen-buckling about the bonded state: K at u = 0 and the tangent under a small end
+    //    shortening (the perturbation load); the critical shortening is its load factor
+    //    times the probe's
+    Mat K = problem.create_matrix(), K_probe = problem.create_matrix();
+    problem.tangent(K);
+    strip.set_end_distance(p.L - a.probe_shortening);
+    gelx::NewtonSolver probe(run.comm(), "probe_newton_");
+    if (!probe.solve(problem).converged)
+      throw gelx::ConvergenceError("the eigen-buckling's probe state did not converge");
+    problem.tangent(K_probe);
+    gelx::LinearBuckling buckling(run.comm());
+    const auto modes = buckling.solve(K, K_probe, a.modes, strip.space());
+    MatDestroy(&K);
+    MatDestroy(&K_probe);
+    strip.set_end_distance(p.L);
+    VecSet(problem.unknowns(), 0);
+    problem.unknowns_changed();
+
+    // The modes on the bonded strip's mesh, before the imperfection moves it
+    gelx::FieldSeries mode_shapes(run.comm(), std::filesystem::path(prm.text("output")) / "modes",
+                                  *strip.mesh().mesh);
+    std::vector<nlohmann::json> eigen_rows;
+    nlohmann::json critical = nlohmann::json::array(), symmetry = nlohmann::json::array();
+    for (std::size_t k = 0; k < modes.size(); ++k)
+    {
+      const auto [asymmetry, antisymmetry] = strip.mirror_asymmetry(*modes[k].shape);
+      // A mode is one or the other to solver accuracy (the problem is mirror-symmetric); 1e-3
+      // leaves room for the eigensolver's tolerance
+      const std::string kind = asymmetry < 1e-3       ? "mirror-symmetric"
+                               : antisymmetry < 1e-3 ? "antisymmetric"
+                                                      : "neither";
+      const double shortening = modes[k].load_factor * a.probe_shortening;
+      eigen_rows.push_back({{"mode", k + 1},
+                            {"critical_shortening", shortening},
+                            {"critical_end_distance", p.L - shortening},
+                            {"mirror_asymmetry", asymmetry},
+                            {"mirror_antisymmetry", antisymmetry},
+                            {"symmetry", kind}});
+      critical.push_back(shortening);
+      symmetry.push_back(kind);
+      gelx::FieldSet shape;
+      shape.add("mode", modes[k].shape);
+      mode_shapes.write(double(k + 1), shape.update());
+    }
+    run.summary.update({{"critical_shortening", critical},
+                        {"first_critical_shortening", critical[0]},
+                        {"mode_symmetry", symmetry}});
+
+    // 4. The imperfection
+    gelx::seed_imperfection(*strip.mesh().mesh, {modes[a.seed_mode - 1]}, {a.imperfection});
+    gelx::ResultsWriter& results = run.results(strip.mesh().mesh);
+    results.write_table("eigenvalues.csv", eigen_rows);
+
+    // 5. Damped quasi-static dynamics from L to the final end distance. Time in s with the
+    //    density of rubber (rho = 1e-9 t/mm^3 in mm, MPa units): the strip's first bending
+    //    vibration is a few Hz; c = 1/s relaxes it within milliseconds, so a loading time of
+    //    1 s is quasi-static wherever the path is stable
+    gelx::set_default_option("dynamics_", "loading_time", "1");
+    gelx::set_default_option("dynamics_", "hold_time", "0.05");
+    gelx::set_default_option("dynamics_", "damping", "1");
+    gelx::set_default_option("dynamics_", "ts_rtol", "1e-3");
+    gelx::set_default_option("dynamics_", "ts_atol", "1e-3");
+    const double travel = p.L - a.end_distance;
+    gelx::DampedDynamics dynamics(
+        run.comm(), problem, *strip.mass_form(), [&] { return strip.strain_energy(); },
+        [&](double amplitude) { strip.set_end_distance(p.L - amplitude * travel); });
+
+    double work = 0, last_force = 0, last_distance = p.L, next_output = p.L - a.output_every;
+    int output_step = 0;
+    std::vector<nlohmann::json> centreline_rows, slab_rows;
+    gelx::scenes::CentrelineAnalysis last_analysis;
+    auto output = [&](const gelx::DynamicsRecord& r)
+    {
+      ++output_step;
+      const double d = strip.end_distance();
+      const auto [energy_A, energy_B] = strip.strip_energies();
+      Mat K_now = problem.create_matrix();
+      problem.tangent(K_now);
+      const int negative = gelx::negative_eigenvalues(run.comm(), K_now);
+      MatDestroy(&K_now);
+      const gelx::scenes::CentrelineSamples c = strip.centreline();
+      last_analysis = gelx::scenes::analyse_centreline(c, a.min_frame_turns);
+      const auto slabs = strip.slab_energies();
+      const Condensation e = perversion_condensation(slabs, last_analysis, p.L);
+      const double peak_anywhere = *std::max_element(e.scaled.begin(), e.scaled.end());
+      const double change = energy_A + energy_B - energy_A0 - energy_B0;
+      // The helices' mean pitch and radius, weighted by their lengths
+      double pitch = 0, radius = 0, length = 0;
+      for (const auto& h : last_analysis.segments)
+      {
+        pitch += h.pitch * (h.end - h.start);
+        radius += h.radius * (h.end - h.start);
+        length += h.end - h.start;
+      }
+      nlohmann::json row = r.to_json();
+      row.update({{"end_distance", d},
+                  {"end_force", last_force},
+                  {"strain_energy_A", energy_A},
+                  {"strain_energy_B", energy_B},
+                  {"strain_energy_change", change},
+                  {"work", work},
+                  {"energy_balance_error", (work - change - r.dissipated_energy) / work},
+                  {"negative_eigenvalues", negative},
+                  {"segments", last_analysis.segments.size()},
+                  {"perversions", last_analysis.perversions.size()},
+                  {"perversion_positions", joined(last_analysis.perversions)},
+                  {"helix_pitch", length > 0 ? pitch / length : NAN},
+                  {"helix_radius", length > 0 ? radius / length : NAN},
+                  {"energy_peak", e.peak},
+                  {"energy_peak_slab", e.peak_slab},
+                  {"energy_peak_width", e.width()},
+                  {"energy_peak_anywhere", peak_anywhere},
+                  {"output", output_step},
+                  {"elapsed", run.elapsed()}});
+      results.append_step(row);
+      results.write_fields(d, fields.update());
+      for (std::size_t k = 0; k < c.Z.size(); ++k)
+        centreline_rows.push_back({{"output", output_step}, {"end_distance", d}, {"Z", c.Z[k]},
+                                   {"x", c.centre[k][0]}, {"y", c.centre[k][1]},
+                                   {"z", c.centre[k][2]},
+                                   {"curvature", last_analysis.curvature[k]},
+                                   {"twist", last_analysis.twist[k]}});
+      results.write_table("centreline.csv", centreline_rows);
+      for (int n = 0; n < p.nz; ++n)
+        slab_rows.push_back({{"output", output_step}, {"end_distance", d}, {"slab", n},
+                             {"z", (n + 0.5) * p.L / p.nz}, {"energy_A", slabs[n].first},
+                             {"energy_B", slabs[n].second},
+                             {"energy_scaled", e.scaled[n]}});
+      results.write_table("slab_energy.csv", slab_rows);
+      // The last state before the first critical end distance: straight, the same on any
+      // number of ranks (tests/CMakeLists.txt compares them)
+      if (d > p.L - modes[0].load_factor * a.probe_shortening)
+        run.summary.update({{"prebuckled_end_distance", d},
+                            {"prebuckled_end_force", last_force},
+                            {"prebuckled_strain_energy_A", energy_A},
+                            {"prebuckled_strain_energy_B", energy_B}});
+      run.summary.update({{"end_distance", d},
+                          {"strain_energy_A", energy_A},
+                          {"strain_energy_B", energy_B},
+                          {"work", work},
+                          {"energy_balance_error", row["energy_balance_error"]},
+                          {"negative_eigenvalues", negative},
+                          {"helices", last_analysis.to_json()},
+                          {"energy_peak", e.peak},
+                          {"energy_peak_slab", e.peak_slab},
+                          {"energy_peak_width", e.width()},
+                          {"energy_peak_anywhere", peak_anywhere},
+                          {"dynamics", dynamics.summary().to_json()}});
+    };
+    const gelx::DynamicsSummary summary = dynamics.run(
+        {[&](const gelx::DynamicsRecord& r)
+         {
+           // The work of the end force, trapezoidal over the accepted steps
+           const double force = strip.end_force(), d = strip.end_distance();
+           work += 0.5 * (force + last_force) * (d - last_distance);
+           last_force = force;
+           last_distance = d;
+           const bool last = r.time >= dynamics.loading_time() + dynamics.hold_time() - 1e-12;
+           if (d <= next_output + 1e-9 * p.L || last)
+           {
+             output(r);
+             while (next_output >= d - 1e-9 * p.L)
+               next_output -= a.output_every;
+           }
+         }});
+    run.summary["dynamics"] = summary.to_json();
+
+    // 6. The energy density over three cross-sections of the final state (Fig. 3.6): the
+    //    perversion nearest mid-length, its edge and the helix beyond it
+    std::vector<nlohmann::json> section_rows;
+    const Condensation e = perversion_condensation(strip.slab_energies(), last_analysis, p.L);
+    if (e.peak_slab >= 0)
+    {
+      // The perversion's centre, its edge (the last slab of its condensation) and the middle
+      // of the helix beyond it
+      const auto& P = last_analysis.perversions;
+      const std::size_t k = central(P, p.L);
+      const auto& helix = last_analysis.segments[k + 1];
+      const double slab = p.L / p.nz;
+      for (const auto& [site, n] :
+           {std::pair{"perversion_centre", static_cast<int>(P[k] / slab)},
+            std::pair{"perversion_edge", e.last_slab},
+            std::pair{"helix", static_cast<int>(0.5 * (helix.start + helix.end) / slab)}})
+      {
+        const int slab_index = std::clamp(n, 0, p.nz - 1);
+        for (const auto& q : strip.section_energy(slab_index))
+          section_rows.push_back({{"site", site}, {"slab", slab_index}, {"x", q.x}, {"y", q.y},
+                                  {"strip", std::string(1, q.strip)},
+                                  {"energy_density", q.psi}});
+      }
+      results.write_table("sections.csv", section_rows);
+    }
+  });
+}

@@ -21,7 +21,9 @@
 //     distance: end force, the strain energy of each strip, kinetic and dissipated energy, the
 //     work of the end force, the number of negative tangent eigenvalues, the helical segments
 //     and perversions read off the centreline (centreline.h), the energy of every slab (Fig.
-//     3.4b) and the shape coloured by von Mises stress (fields.xdmf).
+//     3.4b) and the shape coloured by von Mises stress (fields.xdmf). With --method arclength
+//     the path is followed by arc-length continuation in the end shortening instead: it stays
+//     on the unstable branch that continues the straight strip (demos/bistrip/README.md).
 //  4. At the final distance: the energy density over three cross-sections (Fig. 3.6): a
 //     helical site, the edge and the centre of the perversion nearest mid-length.
 // With --ends free (no support, the misfit alone) the scene solves the bonded strip's free
@@ -33,6 +35,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <gelx/arclength.h>
 #include <gelx/buckling.h>
 #include <gelx/dynamics.h>
 #include <gelx/newton.h>
@@ -57,6 +60,10 @@ struct Analysis
   /// tangent is still linear in it
   double probe_shortening = 0.1;
   double min_frame_turns = 0.25; ///< a helical segment's frame turns at least this much
+  /// How the path is followed: "dynamics" (damped quasi-static dynamics) or "arclength"
+  /// (continuation in the end shortening, to compare where it gets through)
+  std::string method = "dynamics";
+  int max_steps = 2000; ///< arc-length steps at most
 };
 
 /// "a;b;c": a list in one CSV cell
@@ -149,6 +156,11 @@ int main(int argc, char* argv[])
            gelx::Parameters::non_negative);
   prm.bind("analysis", "probe_shortening", a.probe_shortening,
            "the eigen-buckling's perturbation: an end shortening (mm)", gelx::Parameters::positive);
+  prm.bind("analysis", "method", a.method, "path: dynamics or arclength",
+           [](const std::string& m)
+           { return m == "dynamics" || m == "arclength" ? "" : "must be dynamics or arclength"; });
+  prm.bind("analysis", "max_steps", a.max_steps, "arc-length steps at most",
+           gelx::Parameters::at_least_one);
   prm.bind("analysis", "min_frame_turns", a.min_frame_turns,
            "turns of the frame below which a stretch of one twist sign is noise",
            gelx::Parameters::positive);
@@ -177,7 +189,7 @@ int main(int argc, char* argv[])
     {
       // The misfit alone: the free bilayer's equilibrium. Newton's linearised steps stretch
       // the bending strip, so |R| grows on the way to the solution and a backtracking line
-      // search on |R| stalls (measured: 25 steps of 4 %); full Newton steps converge in 9
+      // search on |R| stalls (measured: 25 steps of 4 %); full Newton steps converge in 7
       gelx::set_default_option("newton_", "snes_linesearch_type", "basic");
       gelx::NewtonSolver newton(run.comm());
       gelx::ResultsWriter& results = run.results(strip.mesh().mesh);
@@ -248,25 +260,17 @@ int main(int argc, char* argv[])
     gelx::ResultsWriter& results = run.results(strip.mesh().mesh);
     results.write_table("eigenvalues.csv", eigen_rows);
 
-    // 5. Damped quasi-static dynamics from L to the final end distance. Time in s with the
-    //    density of rubber (rho = 1e-9 t/mm^3 in mm, MPa units): the strip's first bending
-    //    vibration is a few Hz; c = 1/s relaxes it within milliseconds, so a loading time of
-    //    1 s is quasi-static wherever the path is stable
-    gelx::set_default_option("dynamics_", "loading_time", "1");
-    gelx::set_default_option("dynamics_", "hold_time", "0.05");
-    gelx::set_default_option("dynamics_", "damping", "1");
-    gelx::set_default_option("dynamics_", "ts_rtol", "1e-3");
-    gelx::set_default_option("dynamics_", "ts_atol", "1e-3");
+    // 5. The path from L to the final end distance. At every step the work of the end force
+    //    (trapezoidal); at every output_every of end travel, and at the end, the output
     const double travel = p.L - a.end_distance;
-    gelx::DampedDynamics dynamics(
-        run.comm(), problem, *strip.mass_form(), [&] { return strip.strain_energy(); },
-        [&](double amplitude) { strip.set_end_distance(p.L - amplitude * travel); });
-
-    double work = 0, last_force = 0, last_distance = p.L, next_output = p.L - a.output_every;
+    double work = 0, last_force = strip.end_force(), last_distance = p.L;
+    double next_output = p.L - a.output_every;
     int output_step = 0;
     std::vector<nlohmann::json> centreline_rows, slab_rows;
     gelx::scenes::CentrelineAnalysis last_analysis;
-    auto output = [&](const gelx::DynamicsRecord& r)
+    // `row`: what the path's method says of the step; `dissipated`: the energy its
+    // damping has dissipated so far (0 for arc-length)
+    auto output = [&](nlohmann::json row, double dissipated)
     {
       ++output_step;
       const double d = strip.end_distance();
@@ -289,14 +293,13 @@ int main(int argc, char* argv[])
         radius += h.radius * (h.end - h.start);
         length += h.end - h.start;
       }
-      nlohmann::json row = r.to_json();
       row.update({{"end_distance", d},
                   {"end_force", last_force},
                   {"strain_energy_A", energy_A},
                   {"strain_energy_B", energy_B},
                   {"strain_energy_change", change},
                   {"work", work},
-                  {"energy_balance_error", (work - change - r.dissipated_energy) / work},
+                  {"energy_balance_error", (work - change - dissipated) / work},
                   {"negative_eigenvalues", negative},
                   {"segments", last_analysis.segments.size()},
                   {"perversions", last_analysis.perversions.size()},
@@ -341,26 +344,73 @@ int main(int argc, char* argv[])
                           {"energy_peak", e.peak},
                           {"energy_peak_slab", e.peak_slab},
                           {"energy_peak_width", e.width()},
-                          {"energy_peak_anywhere", peak_anywhere},
-                          {"dynamics", dynamics.summary().to_json()}});
+                          {"energy_peak_anywhere", peak_anywhere}});
     };
-    const gelx::DynamicsSummary summary = dynamics.run(
-        {[&](const gelx::DynamicsRecord& r)
-         {
-           // The work of the end force, trapezoidal over the accepted steps
-           const double force = strip.end_force(), d = strip.end_distance();
-           work += 0.5 * (force + last_force) * (d - last_distance);
-           last_force = force;
-           last_distance = d;
-           const bool last = r.time >= dynamics.loading_time() + dynamics.hold_time() - 1e-12;
-           if (d <= next_output + 1e-9 * p.L || last)
+    auto step_done = [&](const nlohmann::json& method_row, double dissipated, bool last)
+    {
+      const double force = strip.end_force(), d = strip.end_distance();
+      work += 0.5 * (force + last_force) * (d - last_distance);
+      last_force = force;
+      last_distance = d;
+      if (d <= next_output + 1e-9 * p.L || last)
+      {
+        output(method_row, dissipated);
+        while (next_output >= d - 1e-9 * p.L)
+          next_output -= a.output_every;
+      }
+    };
+
+    if (a.method == "dynamics")
+    {
+      // Damped quasi-static dynamics. Time in s with the
+      //    density of rubber (rho = 1e-9 t/mm^3 in mm, MPa units): the strip's first bending
+      //    vibration is a few Hz; c = 1/s relaxes it within milliseconds, so a loading time of
+      //    1 s is quasi-static wherever the path is stable
+      gelx::set_default_option("dynamics_", "loading_time", "1");
+      gelx::set_default_option("dynamics_", "hold_time", "0.05");
+      gelx::set_default_option("dynamics_", "damping", "1");
+      gelx::set_default_option("dynamics_", "ts_rtol", "1e-3");
+      gelx::set_default_option("dynamics_", "ts_atol", "1e-3");
+      gelx::DampedDynamics dynamics(
+          run.comm(), problem, *strip.mass_form(), [&] { return strip.strain_energy(); },
+          [&](double amplitude) { strip.set_end_distance(p.L - amplitude * travel); });
+      const gelx::DynamicsSummary summary = dynamics.run(
+          {[&](const gelx::DynamicsRecord& r)
            {
-             output(r);
-             while (next_output >= d - 1e-9 * p.L)
-               next_output -= a.output_every;
-           }
-         }});
-    run.summary["dynamics"] = summary.to_json();
+             step_done(r.to_json(), r.dissipated_energy,
+                       r.time >= dynamics.loading_time() + dynamics.hold_time() - 1e-12);
+             run.summary["dynamics"] = dynamics.summary().to_json();
+           }});
+      run.summary["dynamics"] = summary.to_json();
+    }
+    else
+    {
+      // Arc-length continuation in the end shortening: the Dirichlet values follow the load
+      // factor, and ArcLength's dR/dlambda of the lifted residual carries them
+      gelx::set_default_option("arclength_", "ds", "20");
+      gelx::set_default_option("arclength_", "ds_max", "200");
+      gelx::ArcLength continuation(run.comm(), problem,
+                                   [&](double shortening)
+                                   { strip.set_end_distance(p.L - shortening); });
+      gelx::PathState path;
+      continuation.run(
+          path, a.max_steps,
+          {[&](const gelx::StepRecord& pt, gelx::PathState&)
+           {
+             step_done({{"step", pt.step},
+                        {"arc_length", pt.arc_length},
+                        {"iterations", pt.newton.iterations},
+                        {"cutbacks", pt.cutbacks},
+                        {"wall_time", pt.wall_time}},
+                       0.0, pt.load >= travel);
+           }},
+          [&](const gelx::StepRecord& pt) { return pt.load >= travel; });
+      run.summary["arclength_steps"] = path.step;
+      if (strip.end_distance() > a.end_distance)
+        throw gelx::ConvergenceError("arc-length stopped at end distance "
+                                     + std::to_string(strip.end_distance()) + " mm after "
+                                     + std::to_string(path.step) + " steps");
+    }
 
     // 6. The energy density over three cross-sections of the final state (Fig. 3.6): the
     //    perversion nearest mid-length, its edge and the helix beyond it

@@ -13,8 +13,7 @@ nonlinearity is O(de) = 2 % of kappa at most; measured 0.27 %).
 
 A clamped run (Table 3.1) checks:
 - the buckling modes alternate mirror-symmetric / antisymmetric about z = L/2, modes 1, 3, 5
-  symmetric (the thesis, Fig. 3.1c), each to 1e-6 (the eigensolver's tolerance is 1e-8), with
-  increasing critical shortenings;
+  symmetric (the thesis, Fig. 3.1c), each to 1e-6 (the eigensolver's tolerance is 1e-8);
 - before the first critical shortening the strip stays straight and each strip is in
   uniaxial stress: the end force equals that of the uniaxial closed form of Eq. 3.1 (A at stretch
   stretch d/L from its natural section w h, B at d/L), computed here, within 0.5 % (the clamped
@@ -108,8 +107,6 @@ for r in eigen:
     checks.require(f"mode {k} is {expected[k - 1]} (residual {residual:.2e} <= 1e-6)",
                    residual <= 1e-6)
 shortening = [float(r["critical_shortening"]) for r in eigen]
-checks.require(f"critical shortenings increase with the mode: {shortening}",
-               all(a < b for a, b in zip(shortening, shortening[1:])))
 coarse_run = (prm["nz"] == 40 and prm["degree"] == 2 and prm["w"] == 5
               and prm["end_distance"] == 245)
 if coarse_run:

@@ -268,6 +268,7 @@ int main(int argc, char* argv[])
     int output_step = 0;
     std::vector<nlohmann::json> centreline_rows, slab_rows;
     gelx::scenes::CentrelineAnalysis last_analysis;
+    Condensation last_condensation;
     // `row`: what the path's method says of the step; `dissipated`: the energy its
     // damping has dissipated so far (0 for arc-length)
     auto output = [&](nlohmann::json row, double dissipated)
@@ -282,7 +283,8 @@ int main(int argc, char* argv[])
       const gelx::scenes::CentrelineSamples c = strip.centreline();
       last_analysis = gelx::scenes::analyse_centreline(c, a.min_frame_turns);
       const auto slabs = strip.slab_energies();
-      const Condensation e = perversion_condensation(slabs, last_analysis, p.L);
+      const Condensation& e = last_condensation
+          = perversion_condensation(slabs, last_analysis, p.L);
       const double peak_anywhere = *std::max_element(e.scaled.begin(), e.scaled.end());
       const double change = energy_A + energy_B - energy_A0 - energy_B0;
       // The helices' mean pitch and radius, weighted by their lengths
@@ -415,7 +417,7 @@ int main(int argc, char* argv[])
     // 6. The energy density over three cross-sections of the final state (Fig. 3.6): the
     //    perversion nearest mid-length, its edge and the helix beyond it
     std::vector<nlohmann::json> section_rows;
-    const Condensation e = perversion_condensation(strip.slab_energies(), last_analysis, p.L);
+    const Condensation& e = last_condensation;
     if (e.peak_slab >= 0)
     {
       // The perversion's centre, its edge (the last slab of its condensation) and the middle

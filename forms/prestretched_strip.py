@@ -1,8 +1,8 @@
 """The prestretched bistrip of chapter 3: compressible neo-Hookean (Eq. 3.1) with a per-cell
 prestretch F0 (strip A stretched before bonding, F = Fe F0; F0 = I in strip B), on hexahedra.
 
-Cells tagged 1 are strip A, 2 strip B (meshes/bistrip.geo). Two displacement elements, for the
-work-precision study of demos/bistrip/bench.py: Q2 (suffix q2, the scene's default) and Q1
+Cells tagged 1 are the prestretched strips (A), 2 the stress-free ones (B): demos/bistrip/
+section.h. Two displacement elements, for the work-precision study of demos/bistrip/bench.py: Q2 (suffix q2, the scene's default) and Q1
 (q1, which locks in bending under full integration). Per element:
   residual_*, tangent_*           the equilibrium
   mass_*                          damped dynamics (gelx::DampedDynamics)

@@ -82,8 +82,11 @@ CASES = {
         ("one_peo_value", ["--peo_chi_A", "0.5"], "needs all seven"),
     ],
     "bistrip": [
-        ("missing_mesh", ["--mesh", str(work / "no-such.geo")], "not found"),
-        ("stretch_below_one", ["--stretch", "0.9"], "strip A must be stretched"),
+        ("unknown_layer_kind", ["--section", "B 9x3, Q 9x3"], "unknown kind 'Q'"),
+        ("layer_without_size", ["--section", "B 9x3, A 9"], "write KIND WIDTHxTHICKNESS"),
+        ("stretch_zero", ["--stretch", "0"], "'stretch' = 0: must be positive"),
+        ("unstable_bonded_state", ["--stretch", "0.4", "--nz", "10"],
+         "the bonded strip is unstable"),
         ("negative_modulus", ["--G", "-1.5"], "'G' = -1.5: must be positive"),
         ("degree_three", ["--degree", "3"], "'degree' = 3: must be 1 or 2"),
         ("unknown_ends", ["--ends", "glued"], "must be clamped or free"),
@@ -95,7 +98,7 @@ CASES = {
 TWO_RANKS = {"block": ["missing_mesh", "dt_above_dt_max"], "pyramid": ["W_below_L"],
              "inflation": ["B_equal_A"], "buckling": ["ty_equal_tx"],
              "fiber_gel": ["cell_narrower_than_fiber", "phi_f_beyond_one"],
-             "bistrip": ["missing_mesh", "end_distance_beyond_L"]}
+             "bistrip": ["unknown_layer_kind", "end_distance_beyond_L"]}
 
 # A valid scene file per scene (values other than the defaults, for a run of a few seconds),
 # with the status its run must end in. The buckling run stops after max_steps on its straight

@@ -9,7 +9,11 @@ measured in the bonded state):
 which for equal layers is the issue's 1.5 de / (2 h). The curvature is the least-squares
 circle through the centreline's middle half (the free ends' Saint-Venant layers, about a
 thickness long, left out), and its centre lies on A's side. Bound: 2 % (the issue's; the law's
-nonlinearity is O(de) = 2 % of kappa at most; measured 0.27 %).
+nonlinearity is O(de) = 2 % of kappa at most; measured 0.27 %). A run with --section (any stack
+of layers) is checked against layered beam theory instead: the linear strain e0 + kappa y that
+minimises the stack's misfit energy (layered_beam_curvature below; for two layers it gives
+Timoshenko's value to all digits, measured), and its centre of curvature lies where the strain
+is lower (a tristrip with a compressed, wider middle strip: measured 0.73 %).
 
 A clamped run (Table 3.1) checks:
 - the buckling modes alternate mirror-symmetric / antisymmetric about z = L/2, modes 1, 3, 5
@@ -21,7 +25,7 @@ A clamped run (Table 3.1) checks:
   O(w/L) of the force's change, and the seeded mode bends it slightly: measured 0.1 % and
   0.2 %), with no negative tangent eigenvalue;
 - at every output the energy balance: the work of the end force equals the change of strain
-  energy plus the dissipated energy within 1 % of the work (the issue's bound);
+  energy plus the dissipated energy within 1 % of the largest of the three (the issue's bound);
 - the settled state after the hold is stable: no negative tangent eigenvalue (an output taken
   while the strip leaves the straight state, which is slow just past the bifurcation, may
   count one: the full path shows it once, at 250 mm);
@@ -75,12 +79,44 @@ def rows(name):
     return list(csv.DictReader(open(out / name)))
 
 
+def layered_beam_curvature(layers, misfit):
+    """Curvature of a beam of layers (b, t, prestretched) stacked from y = -t_0 (one material)
+    whose prestretched layers carry the eigenstrain `misfit`: the strain e0 + kappa y that
+    minimises sum_i b_i int (e0 + kappa y - e_i)^2 dy (the normal equations of beam theory).
+    Its sign is that of d(strain)/dy."""
+    y = -layers[0][1]
+    A = np.zeros((2, 2))
+    rhs = np.zeros(2)
+    for b, t, prestretched in layers:
+        S0, S1, S2 = t, ((y + t)**2 - y**2) / 2, ((y + t)**3 - y**3) / 3
+        e = misfit if prestretched else 0.0
+        A += b * np.array([[S0, S1], [S1, S2]])
+        rhs += b * e * np.array([S0, S1])
+        y += t
+    return np.linalg.solve(A, rhs)[1]
+
+
 if prm["ends"] == "free":
     lt = uniaxial(prm["stretch"])[0]
-    m = n = lt
-    H = prm["h"] * (1 + m)
-    de = 1 - 1 / prm["stretch"]
-    kappa = 6 * de * (1 + m)**2 / (H * (3 * (1 + m)**2 + (1 + m * n) * (m * m + 1 / (m * n))))
+    # A's free length is L / stretch: its eigenstrain in the bonded state
+    misfit = 1 / prm["stretch"] - 1
+    if prm["section"]:
+        # The section's layers in the bonded state (A: natural size shrunk by lt)
+        layers = []
+        for item in prm["section"].split(","):
+            kind, size = item.split()
+            b, t = (float(v) for v in size.split("x"))
+            layers.append((lt * b, lt * t, True) if kind == "A" else (b, t, kind == "S"))
+        signed = layered_beam_curvature(layers, misfit)
+        kappa, formula = abs(signed), "layered beam theory"
+        # The strain falls towards the centre of curvature
+        centre_side = -np.sign(signed)
+    else:
+        m = n = lt
+        H = prm["h"] * (1 + m)
+        de = -misfit
+        kappa = 6 * de * (1 + m)**2 / (H * (3 * (1 + m)**2 + (1 + m * n) * (m * m + 1 / (m * n))))
+        formula, centre_side = "Timoshenko's bimetal formula", 1.0
     c = rows("centreline.csv")
     Z = np.array([float(r["Z"]) for r in c])
     y = np.array([float(r["y"]) for r in c])
@@ -90,11 +126,10 @@ if prm["ends"] == "free":
     a, b, cc = np.linalg.lstsq(np.c_[y[middle], z[middle], np.ones(middle.sum())],
                                y[middle]**2 + z[middle]**2, rcond=None)[0]
     radius = math.sqrt(cc + a * a / 4 + b * b / 4)
-    checks.relative("curvature of the free bilayer against Timoshenko's bimetal formula",
-                    1 / radius, kappa, 0.02)
+    checks.relative(f"curvature of the free strip against {formula}", 1 / radius, kappa, 0.02)
     centre_y = a / 2
-    checks.require(f"the centre of curvature is on strip A's side (y = {centre_y:.4g} > 0)",
-                   centre_y > 0)
+    checks.require(f"the centre of curvature is on the side the formula says (y = "
+                   f"{centre_y:.4g}, side {centre_side:+.0f})", centre_y * centre_side > 0)
     checks.finish()
 
 # Clamped: the buckling modes
@@ -128,7 +163,7 @@ for r in before:
                     float(r["end_force"]), force, 5e-3)
 for r in steps:
     d = float(r["end_distance"])
-    checks.absolute(f"energy balance at d = {d:.3f} mm: (W - dSE - ED) / W",
+    checks.absolute(f"energy balance at d = {d:.3f} mm: (W - dSE - ED) / max(|W|, |dSE|, ED)",
                     float(r["energy_balance_error"]), 0.0, 1e-2)
 for r in before + steps[-1:]:
     checks.require(f"no negative tangent eigenvalue at d = {float(r['end_distance']):.3f} mm "
@@ -136,10 +171,12 @@ for r in before + steps[-1:]:
 
 if coarse_run:
     # The settled state at 24.5 cm (after the hold): an equilibrium to Newton's tolerance,
-    # reached by 1 and 2 ranks alike (measured: they agree to 2e-14)
+    # reached by 1 and 2 ranks alike (measured: they agree to 2e-14). Values since strip A's
+    # cross-section is meshed at the exact lateral stretch (it was rounded to 6 decimals,
+    # 0.566404: the values moved by 1.1e-6)
     final = steps[-1]
-    for key, value in (("end_force", 44.66017311588), ("strain_energy_A", 5502.001758448),
-                       ("strain_energy_B", 334.3470870067)):
+    for key, value in (("end_force", 44.660225491242), ("strain_energy_A", 5502.0076947519),
+                       ("strain_energy_B", 334.347437674761)):
         checks.relative(f"{key} at 24.5 cm, regression of this coarse mesh", float(final[key]),
                         value, 1e-6)
 

@@ -83,6 +83,10 @@ public:
 
   /// Forget every deflated solution (before a new load).
   void clear() { _deflated.clear(); }
+  /// Deflate a solution found otherwise (the end of a path): solve() from it could not
+  /// confirm it, since its residual is already at the level round-off keeps it at, and the
+  /// relative tolerance asks for 1e-10 of that.
+  void deflate(Vec solution) { _deflated.deflate(solution); }
 
   /// Solve from `guess` with the known solutions deflated; the converged state, if it is a new
   /// solution (then deflated from now on), or nothing.

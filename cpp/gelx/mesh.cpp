@@ -15,6 +15,8 @@
 #include <filesystem>
 #include <functional>
 #include <gmsh.h>
+#include <iomanip>
+#include <sstream>
 #include <numeric>
 #include <xtensor/xview.hpp>
 
@@ -198,7 +200,12 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
     throw InputError("mesh file '" + geo_file + "' not found");
   std::vector<std::string> args;
   for (auto& [name, value] : numbers)
-    args.insert(args.end(), {"-setnumber", name, std::to_string(value)});
+  {
+    // Every digit (std::to_string keeps 6 decimals: a value of 1e-7 would arrive as 0)
+    std::ostringstream text;
+    text << std::setprecision(17) << value;
+    args.insert(args.end(), {"-setnumber", name, text.str()});
+  }
   return mesh_gmsh_model(comm, [&]() { gmsh::open(geo_file); }, args, mirror_axes);
 }
 

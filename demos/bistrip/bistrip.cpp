@@ -9,6 +9,8 @@
 #include <gelx/parameters.h>
 #include <gelx/prestretch.h>
 #include <map>
+#include <random>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
 #include <xtensor/xtensor.hpp>
@@ -26,7 +28,11 @@ void BistripParameters::bind(Parameters& prm)
            Parameters::positive);
   prm.bind("geometry", "L", L, "length (mm)", Parameters::positive);
   prm.bind("geometry", "stretch", stretch,
-           "L / L': the stretch of strip A before bonding (1: no misfit)", Parameters::positive);
+           "L / L': the stretch of strip A before bonding (1: no misfit, < 1: compressed)",
+           Parameters::positive);
+  prm.bind("geometry", "section", section,
+           "layers from the bottom up, 'KIND WxH' in mm, comma-separated: B stress-free, A "
+           "prestretched (natural size), S prestretched (bonded size); empty: 'B wxh, A wxh'");
   prm.bind("geometry", "ends", ends,
            "clamped (z = 0 encastred, z = L a rigid face moving along z) or free",
            [](const std::string& e)
@@ -45,9 +51,7 @@ void BistripParameters::bind(Parameters& prm)
 
 void BistripParameters::check() const
 {
-  if (stretch < 1)
-    throw InputError("stretch = " + std::to_string(stretch)
-                     + ": strip A must be stretched (>= 1) before bonding");
+  layers(); // throws on a malformed section
   if (ends == "free" && (nz % 2 != 0 && degree == 1))
     throw InputError("free ends need a node layer at z = L/2: an even nz with Q1");
 }
@@ -59,9 +63,10 @@ double uniaxial_lateral_stretch(double stretch, double G, double K)
     const double J = stretch * l * l, I1 = stretch * stretch + 2 * l * l;
     return G * std::pow(J, -5.0 / 3.0) * (l * l - I1 / 3) + K * (J - 1);
   };
-  // sigma_lateral < 0 at l -> 0 (J -> 0), > 0 at l = 1 for stretch >= 1 (J >= 1, l^2 >= I1/3
-  // fails only by the deviatoric part, which K (J - 1) outweighs once l is large enough)
-  double lo = 1e-3, hi = std::max(1.0, 2.0 / std::sqrt(stretch));
+  // sigma_lateral -> -inf as l -> 0 (J -> 0, the deviatoric part J^(-5/3) (l^2 - stretch^2)/3
+  // < 0 for l < stretch); and > 0 once l is large enough (K (J - 1) grows like l^2, the
+  // deviatoric part decays): the bracket is widened until it holds the root
+  double lo = 1e-3 * std::min(1.0, stretch), hi = std::max(1.0, 2.0 / std::sqrt(stretch));
   while (lateral_stress(hi) < 0)
     hi *= 2;
   for (int i = 0; i < 200 && hi - lo > 1e-15; ++i)
@@ -77,17 +82,17 @@ double BistripParameters::lateral_stretch() const
   return uniaxial_lateral_stretch(stretch, G, K);
 }
 
+std::vector<Layer> BistripParameters::layers() const
+{
+  std::ostringstream bistrip;
+  bistrip << "B " << w << "x" << h << ", A " << w << "x" << h;
+  return parse_section(section.empty() ? bistrip.str() : section, lateral_stretch());
+}
+
 namespace
 {
-/// Tags of meshes/bistrip.geo
+/// Tags of layered_strip_mesh
 constexpr int strip_A = 1, fixed_end = 1, moving_end = 2;
-
-std::map<std::string, double> geometry_parameters(const BistripParameters& p)
-{
-  return {{"w", p.w},   {"h", p.h},   {"L", p.L},   {"lt", p.lateral_stretch()},
-          {"nz", p.nz}, {"nx", p.nx}, {"ns", p.ns}, {"nb", p.nb},
-          {"na", p.na}};
-}
 
 /// A node's place in the structured mesh, from its reference position: its layer along z and
 /// its cross-section position to 1e-3 mm (the mirror image of a node is the node with the
@@ -141,8 +146,9 @@ const Kernels& kernels(int degree)
 }
 } // namespace
 
-Bistrip::Bistrip(MPI_Comm comm, const std::string& geo_file, BistripParameters p)
-    : _p(p), _geo(read_geo(comm, geo_file, geometry_parameters(p))), _end_distance(p.L)
+Bistrip::Bistrip(MPI_Comm comm, BistripParameters p)
+    : _p(p), _geo(layered_strip_mesh(comm, p.layers(), p.L, {p.nz, p.nx, p.ns, p.nb, p.na})),
+      _frame_half_width(p.layers()[0].width / 2), _end_distance(p.L)
 {
   const Kernels& k = kernels(p.degree);
   auto V = std::make_shared<fem::FunctionSpace>(
@@ -154,9 +160,7 @@ Bistrip::Bistrip(MPI_Comm comm, const std::string& geo_file, BistripParameters p
   // natural length L / stretch and its unshrunk cross-section
   _F0 = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
       fem::create_functionspace(k.space, "F0", _geo.mesh)));
-  const double lt = p.lateral_stretch();
-  set_prestretch(*_F0, *_geo.cell_tags,
-                 {{strip_A, {1 / lt, 0, 0, 0, 1 / lt, 0, 0, 0, 1 / p.stretch}}});
+  set_prestretch_fraction(1);
 
   _forms = std::make_unique<FormBinding>(
       _geo.mesh, FormBinding::Coefficients{{k.u, _u}, {"F0", _F0}},
@@ -241,6 +245,14 @@ Bistrip::Bistrip(MPI_Comm comm, const std::string& geo_file, BistripParameters p
   _X = V->tabulate_dof_coordinates(false);
 }
 
+void Bistrip::set_prestretch_fraction(double s)
+{
+  const double lateral = std::pow(1 / _p.lateral_stretch(), s),
+               axial = std::pow(1 / _p.stretch, s);
+  set_prestretch(*_F0, *_geo.cell_tags,
+                 {{strip_A, {lateral, 0, 0, 0, lateral, 0, 0, 0, axial}}});
+}
+
 void Bistrip::set_end_distance(double d)
 {
   _end_distance = d;
@@ -320,7 +332,7 @@ std::vector<Bistrip::SectionPoint> Bistrip::section_energy(int slab) const
 CentrelineSamples Bistrip::centreline() const
 {
   // Per node layer: the sum of the owned nodes' positions and their number, and the positions
-  // of the interface's two edges x = -w/2 and x = w/2 (y = 0)
+  // of the bottom layer's two top edges x = -+_frame_half_width, y = 0
   const int layers = _p.degree * _p.nz + 1;
   const double spacing = _p.L / (layers - 1);
   std::vector<double> sums(layers * 10, 0.0); // centre (3), count, minus edge (3), plus (3)
@@ -328,7 +340,7 @@ CentrelineSamples Bistrip::centreline() const
   const auto& u = _u->x()->array();
   // Positions on the current mesh, which carries the imperfection if one was seeded
   const std::vector<double> X = space()->tabulate_dof_coordinates(false);
-  const double tol = 1e-6 * _p.w;
+  const double tol = 1e-6 * _frame_half_width;
   for (std::int32_t n = 0; n < owned; ++n)
   {
     const auto [layer, ix, iy] = node_key(&_X[3 * n], spacing);
@@ -336,7 +348,8 @@ CentrelineSamples Bistrip::centreline() const
     for (int i = 0; i < 3; ++i)
       s[i] += X[3 * n + i] + u[3 * n + i];
     s[3] += 1;
-    if (std::abs(_X[3 * n + 1]) < tol && std::abs(std::abs(_X[3 * n]) - _p.w / 2) < tol)
+    if (std::abs(_X[3 * n + 1]) < tol
+        && std::abs(std::abs(_X[3 * n]) - _frame_half_width) < tol)
       for (int i = 0; i < 3; ++i)
         s[(_X[3 * n] < 0 ? 4 : 7) + i] = X[3 * n + i] + u[3 * n + i];
   }
@@ -383,6 +396,38 @@ std::pair<double, double> Bistrip::mirror_asymmetry(const fem::Function<double>&
     }
   }
   return {std::sqrt(symmetric / norm), std::sqrt(antisymmetric / norm)};
+}
+
+std::shared_ptr<fem::Function<double>> Bistrip::random_imperfection(int harmonics,
+                                                                    unsigned seed) const
+{
+  std::mt19937 twister(seed);
+  // The raw 32-bit draws, not std::uniform_real_distribution, whose algorithm the standard
+  // leaves to the library: the same coefficients everywhere
+  const auto uniform = [&] { return 2.0 * twister() / 4294967295.0 - 1; };
+  std::vector<double> a(harmonics), b(harmonics);
+  for (int k = 0; k < harmonics; ++k)
+  {
+    a[k] = uniform();
+    b[k] = uniform();
+  }
+  auto f = std::make_shared<fem::Function<double>>(_u->function_space());
+  std::span<double> v = f->x()->mutable_array();
+  double largest = 0;
+  for (std::size_t n = 0; n < _X.size() / 3; ++n)
+  {
+    for (int k = 0; k < harmonics; ++k)
+    {
+      const double s = std::sin((k + 1) * M_PI * _X[3 * n + 2] / _p.L);
+      v[3 * n] += a[k] * s;
+      v[3 * n + 1] += b[k] * s;
+    }
+    largest = std::max({largest, std::abs(v[3 * n]), std::abs(v[3 * n + 1])});
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &largest, 1, MPI_DOUBLE, MPI_MAX, _geo.mesh->comm());
+  for (double& value : v)
+    value /= largest;
+  return f;
 }
 
 std::shared_ptr<fem::Form<double>> Bistrip::mass_form() const

@@ -4,12 +4,14 @@
 /// stress-free, strip A (upper) was stretched from its natural length L / stretch to L before
 /// the two were bonded. Compressible neo-Hookean (Eq. 3.1) with A's stretch carried as the
 /// prestretch F0 of its cells (forms/prestretched_strip.py), structured hexahedra
-/// (meshes/bistrip.geo).
+/// (section.h). Other cross-sections (Fig. 3.10: tristrips, other widths) and a
+/// pre-compressed strip A (stretch < 1, Fig. 3.8) are the same model with other parameters.
 /// End z = 0 encastred; end z = L moves as a rigid face without rotation (u1 = u2 = 0, one
 /// u3 for all its nodes), or both ends free (the small-misfit check).
 /// Lengths in mm, stresses in MPa, forces in N, energies in mJ.
 
 #include "centreline.h"
+#include "section.h"
 
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/Function.h>
@@ -36,16 +38,19 @@ struct BistripParameters
   double w = 5;       ///< width of each strip (mm; the thesis varies it from 5 to 9)
   double h = 3;       ///< thickness of each strip (mm), before A is stretched
   double L = 300;     ///< length (mm)
-  double stretch = 3.5; ///< L / L': how far A was stretched before bonding
+  double stretch = 3.5; ///< L / L': how far A was stretched (< 1: compressed) before bonding
+  /// The cross-section, layers from the bottom up (parse_section); empty: "B wxh, A wxh",
+  /// the bistrip of Fig. 3.10a
+  std::string section;
   double G = 1.5;     ///< shear modulus (MPa)
   double K = 40;      ///< bulk modulus (MPa)
   double rho = 1e-9;  ///< mass density (t/mm^3: 1000 kg/m^3, with time in s)
   int degree = 2;     ///< displacement element: Q2 (default) or Q1 hexahedra
   int nz = 100;       ///< cell layers (slabs) along the strip
-  int nx = 2;         ///< cells across A's width
-  int ns = 1;         ///< cells across each of B's overhangs beside A
-  int nb = 1;         ///< cells through B's thickness
-  int na = 1;         ///< cells through A's thickness
+  int nx = 2;         ///< cells across the narrowest layer (A's width)
+  int ns = 1;         ///< cells across each overhang of a wider layer (B's beside A)
+  int nb = 1;         ///< cells through each stress-free layer (B)
+  int na = 1;         ///< cells through each prestretched layer (A)
   std::string ends = "clamped"; ///< "clamped" (Table 3.1) or "free" (no support at all)
 
   void bind(Parameters& prm);
@@ -53,17 +58,19 @@ struct BistripParameters
   void check() const;
   /// The lateral stretch of A's uniaxial stretch (its cross-section shrinks by it).
   double lateral_stretch() const;
+  /// The cross-section's layers in the bonded state.
+  std::vector<Layer> layers() const;
 };
 
-/// The lateral stretch l of a compressible neo-Hookean bar (Eq. 3.1) stretched by `stretch`
-/// along its axis with free sides: the root of sigma_lateral = G J^(-5/3) (l^2 - I1/3) +
+/// The lateral stretch l of a compressible neo-Hookean bar (Eq. 3.1) stretched (or, below 1,
+/// compressed) by `stretch` along its axis with free sides: the root of sigma_lateral = G J^(-5/3) (l^2 - I1/3) +
 /// K (J - 1) = 0, J = stretch l^2, I1 = stretch^2 + 2 l^2 (bisection, to round-off).
 double uniaxial_lateral_stretch(double stretch, double G, double K);
 
 class Bistrip
 {
 public:
-  Bistrip(MPI_Comm comm, const std::string& geo_file, BistripParameters p);
+  Bistrip(MPI_Comm comm, BistripParameters p);
 
   NonlinearProblem& problem() { return *_problem; }
   const TaggedMesh& mesh() const { return _geo; }
@@ -74,6 +81,11 @@ public:
     return _u->function_space();
   }
 
+  /// Give strip A the fraction s in [0, 1] of its prestretch, log-linearly: F0^s (I at 0,
+  /// the bonded prestretch at 1, the default), as a growth or thermal strain would build
+  /// it up: a strip whose full prestretch leaves the bonded state unstable (pre-compressed)
+  /// can then buckle on the way.
+  void set_prestretch_fraction(double s);
   /// Move the end z = L to the end-to-end distance d (mm).
   void set_end_distance(double d);
   double end_distance() const { return _end_distance; }
@@ -96,13 +108,22 @@ public:
   };
   std::vector<SectionPoint> section_energy(int slab) const;
 
-  /// The deformed centreline and width direction (the material frame) at every node layer.
-  /// Collective.
+  /// The deformed centreline and width direction (the material frame: the bottom layer's
+  /// top face, across) at every node layer. Collective.
   CentrelineSamples centreline() const;
   /// How far a mode (or any displacement) is from mirror symmetry about z = L/2:
   /// (|v - S v| / |v|, |v + S v| / |v|) with S v(x, y, z) = (v1, v2, -v3)(x, y, L - z): the
   /// first is 0 for a mirror-symmetric shape, the second for an antisymmetric one. Collective.
   std::pair<double, double> mirror_asymmetry(const dolfinx::fem::Function<double>& v) const;
+
+  /// A smooth random imperfection for a strip whose bonded state is already unstable
+  /// (pre-compressed: eigen-buckling about it is meaningless): every cross-section moved
+  /// sideways by (sum_k a_k sin(k pi z / L), sum_k b_k sin(k pi z / L), 0), k = 1 ..
+  /// `harmonics`, a_k and b_k uniform in [-1, 1] from a Mersenne twister with `seed` (the
+  /// same on every rank and machine), scaled to largest component 1. Zero at the clamps; the
+  /// damped dynamics amplifies its fastest-growing wavelengths, as noise seeds a pattern.
+  std::shared_ptr<dolfinx::fem::Function<double>> random_imperfection(int harmonics,
+                                                                      unsigned seed) const;
 
   std::shared_ptr<dolfinx::fem::Form<double>> mass_form() const;
   std::shared_ptr<dolfinx::fem::Expression<double>> stress() const;
@@ -121,6 +142,7 @@ private:
   /// The nodes' reference positions before any imperfection: where they sit in the
   /// structured mesh (layer, cross-section position)
   std::vector<double> _X;
+  double _frame_half_width; ///< the bottom layer's: the frame's edges are x = +-this, y = 0
   double _end_distance;
 };
 

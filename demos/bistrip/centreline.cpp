@@ -63,6 +63,7 @@ CentrelineAnalysis analyse_centreline(const CentrelineSamples& samples, double m
     d2[k] = cross(t[k], d1[k]);
   }
   CentrelineAnalysis result;
+  result.frame = d1;
   result.curvature.resize(n);
   result.twist.resize(n);
   for (int k = 0; k < n; ++k)

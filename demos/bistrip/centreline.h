@@ -37,6 +37,9 @@ struct CentrelineAnalysis
   /// At every sample: curvature |t'| and twist d1' . d2 of the frame (t, d1, d2 = t x d1), per
   /// deformed arc length
   std::vector<double> curvature, twist;
+  /// At every sample: the frame's first director d1 (the width vector made normal to the
+  /// tangent), whose turning about the strip's axis shows how a perversion winds
+  std::vector<std::array<double, 3>> frame;
   std::vector<HelicalSegment> segments;
   /// Reference positions of the perversions: where the twist changes sign between two
   /// segments (linear interpolation of the zero)

@@ -5,6 +5,11 @@
 //   ./gelx run bistrip                                    (the whole path, 30 -> 9 cm)
 //   ./gelx run bistrip --end_distance 200 --nz 60         (coarse, up to the first helices)
 //   ./gelx run bistrip --ends free --stretch 1.02 --L 60 --nz 20   (the small-misfit check)
+//   ./gelx run bistrip --w 9 --section "B 9x3, S 9x3, B 9x0.2"     (a tristrip, Fig. 3.10c)
+//   ./gelx run bistrip --w 3 --stretch 0.4 --seed random --bonding ramp --end_distance 270
+//                      --return_distance 300                     (pre-compressed, Figs. 3.8-9)
+//   ./gelx run bistrip --end_distance 233 --equilibria 6          (other equilibria there)
+//   ./gelx sweep bistrip                                  (the studies of thesis section 3.4)
 //
 // The model (thesis section 3.2-3.3, Table 3.1): strip B (lower, w x h) is stress-free; strip A
 // (upper) was stretched from its natural length L / stretch to L, its cross-section shrinking
@@ -24,8 +29,10 @@
 //     3.4b) and the shape coloured by von Mises stress (fields.xdmf). With --method arclength
 //     the path is followed by arc-length continuation in the end shortening instead: it stays
 //     on the unstable branch that continues the straight strip (demos/bistrip/README.md).
+//     With --return_distance the end then moves back out (the stretching of Fig. 3.9).
 //  4. At the final distance: the energy density over three cross-sections (Fig. 3.6): a
-//     helical site, the edge and the centre of the perversion nearest mid-length.
+//     helical site, the edge and the centre of the perversion nearest mid-length; with
+//     --equilibria, further equilibria there by deflation, their energies and stability.
 // With --ends free (no support, the misfit alone) the scene solves the bonded strip's free
 // equilibrium instead: the curvature of the bilayer (tests/bistrip.py checks it against
 // Timoshenko's bimetal formula).
@@ -37,9 +44,11 @@
 #include <filesystem>
 #include <gelx/arclength.h>
 #include <gelx/buckling.h>
+#include <gelx/deflation.h>
 #include <gelx/dynamics.h>
 #include <gelx/newton.h>
 #include <gelx/output.h>
+#include <gelx/field_series.h>
 #include <gelx/petsc_utils.h>
 #include <gelx/program.h>
 #include <sstream>
@@ -48,8 +57,10 @@ namespace
 {
 struct Analysis
 {
-  std::string mesh = GELX_MESHES "/bistrip.geo";
   double end_distance = 90;  ///< final end-to-end distance (mm)
+  /// After end_distance, drive the end back out to this distance (mm; 0: no return leg): the
+  /// stretching back of thesis Fig. 3.9
+  double return_distance = 0;
   double output_every = 10;  ///< output every this much of end travel (mm)
   int modes = 5;             ///< buckling modes to compute
   int seed_mode = 1;         ///< the mode seeded as the imperfection
@@ -64,6 +75,19 @@ struct Analysis
   /// (continuation in the end shortening, to compare where it gets through)
   std::string method = "dynamics";
   int max_steps = 2000; ///< arc-length steps at most
+  /// The imperfection: "mode" (the seed_mode-th buckling mode) or "random" (a smooth random
+  /// shape of the centreline with `harmonics` sines along it, Bistrip::random_imperfection)
+  std::string seed = "mode";
+  /// How A's prestretch is there: "instant" (bonded carrying all of it, thesis Table 3.1)
+  /// or "ramp" (built up log-linearly at end distance L by damped dynamics first, leg 0:
+  /// for a pre-compressed A, whose bonded state is unstable from the start)
+  std::string bonding = "instant";
+  int harmonics = 60;
+  /// Equilibria to seek by deflation at the final end distance, besides the path's (0: none)
+  int equilibria = 0;
+  /// The deflation's guesses: the path's state plus or minus each buckling mode at this
+  /// amplitude (mm, the mode's largest component)
+  double guess_amplitude = 3;
 };
 
 /// "a;b;c": a list in one CSV cell
@@ -142,14 +166,25 @@ int main(int argc, char* argv[])
   Analysis a;
   gelx::Parameters prm;
   p.bind(prm);
-  prm.bind("geometry", "mesh", a.mesh, "gmsh geometry file");
   prm.bind("analysis", "end_distance", a.end_distance, "final end-to-end distance (mm)",
            gelx::Parameters::positive);
+  prm.bind("analysis", "return_distance", a.return_distance,
+           "after end_distance, drive the end back to this distance (mm; 0: no return)",
+           gelx::Parameters::non_negative);
   prm.bind("analysis", "output_every", a.output_every, "output every this much end travel (mm)",
            gelx::Parameters::positive);
   prm.bind("analysis", "modes", a.modes, "buckling modes to compute",
            gelx::Parameters::at_least_one);
   prm.bind("analysis", "seed_mode", a.seed_mode, "the buckling mode seeded as imperfection",
+           gelx::Parameters::at_least_one);
+  prm.bind("analysis", "seed", a.seed, "imperfection: mode (a buckling mode) or random",
+           [](const std::string& m)
+           { return m == "mode" || m == "random" ? "" : "must be mode or random"; });
+  prm.bind("analysis", "bonding", a.bonding,
+           "instant (A bonded with its prestretch) or ramp (the prestretch built up first)",
+           [](const std::string& m)
+           { return m == "instant" || m == "ramp" ? "" : "must be instant or ramp"; });
+  prm.bind("analysis", "harmonics", a.harmonics, "sines along the strip of --seed random",
            gelx::Parameters::at_least_one);
   prm.bind("analysis", "imperfection", a.imperfection,
            "amplitude of the seeded mode (mm, its largest component 1)",
@@ -161,6 +196,12 @@ int main(int argc, char* argv[])
            { return m == "dynamics" || m == "arclength" ? "" : "must be dynamics or arclength"; });
   prm.bind("analysis", "max_steps", a.max_steps, "arc-length steps at most",
            gelx::Parameters::at_least_one);
+  prm.bind("analysis", "equilibria", a.equilibria,
+           "equilibria to seek by deflation at the final end distance (0: none)",
+           gelx::Parameters::non_negative);
+  prm.bind("analysis", "guess_amplitude", a.guess_amplitude,
+           "deflation's guesses: the path's state +- each mode at this amplitude (mm)",
+           gelx::Parameters::positive);
   prm.bind("analysis", "min_frame_turns", a.min_frame_turns,
            "turns of the frame below which a stretch of one twist sign is noise",
            gelx::Parameters::positive);
@@ -170,13 +211,24 @@ int main(int argc, char* argv[])
     p.check();
     if (p.ends == "clamped" && a.end_distance >= p.L)
       throw gelx::InputError("end_distance must be below L");
+    if (a.return_distance > 0
+        && (a.return_distance <= a.end_distance || a.return_distance > p.L))
+      throw gelx::InputError("return_distance must lie in (end_distance, L]");
+    if (a.equilibria > 0 && a.seed != "mode")
+      throw gelx::InputError("equilibria need the buckling modes for guesses: --seed mode");
+    if (a.bonding == "ramp" && (a.seed != "random" || a.method != "dynamics"))
+      throw gelx::InputError("--bonding ramp needs --seed random and --method dynamics");
+    if (a.return_distance > 0 && a.method != "dynamics")
+      throw gelx::InputError("return_distance needs --method dynamics");
     if (a.seed_mode > a.modes)
       throw gelx::InputError("seed_mode must be one of the computed modes (1 .. modes)");
 
     // 2. The bonded strip
-    gelx::scenes::Bistrip strip(run.comm(), a.mesh, p);
+    gelx::scenes::Bistrip strip(run.comm(), p);
     gelx::NonlinearProblem& problem = strip.problem();
-    const auto [energy_A0, energy_B0] = strip.strip_energies();
+    // The strip energies the path's energy balance starts from
+    double energy_A0, energy_B0;
+    std::tie(energy_A0, energy_B0) = strip.strip_energies();
     run.summary = {{"num_dofs", strip.space()->dofmap()->index_map->size_global() * 3},
                    {"lateral_stretch", p.lateral_stretch()},
                    {"prestress_energy", energy_A0 + energy_B0}};
@@ -207,65 +259,88 @@ int main(int argc, char* argv[])
       return;
     }
 
-    // 3. Eigen-buckling about the bonded state: K at u = 0 and the tangent under a small end
-    //    shortening (the perturbation load); the critical shortening is its load factor
-    //    times the probe's
-    Mat K = problem.create_matrix(), K_probe = problem.create_matrix();
+    // 3. The bonded state's stability (the inertia of its tangent K at u = 0); about a
+    //    stable one, eigen-buckling: K and the tangent under a small end shortening (the
+    //    perturbation load), the critical shortening its load factor times the probe's. A
+    //    pre-compressed strip A can make the bonded strip unstable already: it needs its
+    //    prestretch built up (--bonding ramp)
+    Mat K = problem.create_matrix();
     problem.tangent(K);
-    strip.set_end_distance(p.L - a.probe_shortening);
-    gelx::NewtonSolver probe(run.comm(), "probe_newton_");
-    if (!probe.solve(problem).converged)
-      throw gelx::ConvergenceError("the eigen-buckling's probe state did not converge");
-    problem.tangent(K_probe);
-    gelx::LinearBuckling buckling(run.comm());
-    const auto modes = buckling.solve(K, K_probe, a.modes, strip.space());
-    MatDestroy(&K);
-    MatDestroy(&K_probe);
-    strip.set_end_distance(p.L);
-    VecSet(problem.unknowns(), 0);
-    problem.unknowns_changed();
-
-    // The modes on the bonded strip's mesh, before the imperfection moves it
-    gelx::FieldSeries mode_shapes(run.comm(), std::filesystem::path(prm.text("output")) / "modes",
-                                  *strip.mesh().mesh);
+    const int bonded_negative = gelx::negative_eigenvalues(run.comm(), K);
+    run.summary["bonded_negative_eigenvalues"] = bonded_negative;
+    if (bonded_negative > 0 && a.bonding == "instant")
+      throw gelx::InputError(
+          "the bonded strip is unstable (" + std::to_string(bonded_negative)
+          + " negative eigenvalues of its tangent): eigen-buckling about it does not apply and "
+            "dynamics from it needs steps of 1e-9 s; build the prestretch up with --bonding "
+            "ramp --seed random");
+    std::vector<gelx::BucklingMode> modes;
     std::vector<nlohmann::json> eigen_rows;
-    nlohmann::json critical = nlohmann::json::array(), symmetry = nlohmann::json::array();
-    for (std::size_t k = 0; k < modes.size(); ++k)
+    if (a.seed == "mode")
     {
-      const auto [asymmetry, antisymmetry] = strip.mirror_asymmetry(*modes[k].shape);
-      // A mode is one or the other to solver accuracy (the problem is mirror-symmetric); 1e-3
-      // leaves room for the eigensolver's tolerance
-      const std::string kind = asymmetry < 1e-3       ? "mirror-symmetric"
-                               : antisymmetry < 1e-3 ? "antisymmetric"
-                                                      : "neither";
-      const double shortening = modes[k].load_factor * a.probe_shortening;
-      eigen_rows.push_back({{"mode", k + 1},
-                            {"critical_shortening", shortening},
-                            {"critical_end_distance", p.L - shortening},
-                            {"mirror_asymmetry", asymmetry},
-                            {"mirror_antisymmetry", antisymmetry},
-                            {"symmetry", kind}});
-      critical.push_back(shortening);
-      symmetry.push_back(kind);
-      gelx::FieldSet shape;
-      shape.add("mode", modes[k].shape);
-      mode_shapes.write(double(k + 1), shape.update());
+      Mat K_probe = problem.create_matrix();
+      strip.set_end_distance(p.L - a.probe_shortening);
+      gelx::NewtonSolver probe(run.comm(), "probe_newton_");
+      if (!probe.solve(problem).converged)
+        throw gelx::ConvergenceError("the eigen-buckling's probe state did not converge");
+      problem.tangent(K_probe);
+      gelx::LinearBuckling buckling(run.comm());
+      modes = buckling.solve(K, K_probe, a.modes, strip.space());
+      MatDestroy(&K_probe);
+      strip.set_end_distance(p.L);
+      VecSet(problem.unknowns(), 0);
+      problem.unknowns_changed();
+
+      // The modes on the bonded strip's mesh, before the imperfection moves it
+      gelx::FieldSeries mode_shapes(
+          run.comm(), std::filesystem::path(prm.text("output")) / "modes", *strip.mesh().mesh);
+      nlohmann::json critical = nlohmann::json::array(), symmetry = nlohmann::json::array();
+      for (std::size_t k = 0; k < modes.size(); ++k)
+      {
+        const auto [asymmetry, antisymmetry] = strip.mirror_asymmetry(*modes[k].shape);
+        // A mode is one or the other to solver accuracy (the problem is mirror-symmetric);
+        // 1e-3 leaves room for the eigensolver's tolerance
+        const std::string kind = asymmetry < 1e-3       ? "mirror-symmetric"
+                                 : antisymmetry < 1e-3 ? "antisymmetric"
+                                                        : "neither";
+        const double shortening = modes[k].load_factor * a.probe_shortening;
+        eigen_rows.push_back({{"mode", k + 1},
+                              {"critical_shortening", shortening},
+                              {"critical_end_distance", p.L - shortening},
+                              {"mirror_asymmetry", asymmetry},
+                              {"mirror_antisymmetry", antisymmetry},
+                              {"symmetry", kind}});
+        critical.push_back(shortening);
+        symmetry.push_back(kind);
+        gelx::FieldSet shape;
+        shape.add("mode", modes[k].shape);
+        mode_shapes.write(double(k + 1), shape.update());
+      }
+      run.summary.update({{"critical_shortening", critical},
+                          {"first_critical_shortening", critical[0]},
+                          {"mode_symmetry", symmetry}});
     }
-    run.summary.update({{"critical_shortening", critical},
-                        {"first_critical_shortening", critical[0]},
-                        {"mode_symmetry", symmetry}});
+    MatDestroy(&K);
 
-    // 4. The imperfection
-    gelx::seed_imperfection(*strip.mesh().mesh, {modes[a.seed_mode - 1]}, {a.imperfection});
+    // 4. The imperfection (and, with --bonding ramp, A without its prestretch yet)
+    if (a.bonding == "ramp")
+      strip.set_prestretch_fraction(0);
+    gelx::seed_imperfection(*strip.mesh().mesh,
+                            {a.seed == "mode" ? modes[a.seed_mode - 1]
+                                              : gelx::BucklingMode{0, strip.random_imperfection(
+                                                                          a.harmonics, 1)}},
+                            {a.imperfection});
     gelx::ResultsWriter& results = run.results(strip.mesh().mesh);
-    results.write_table("eigenvalues.csv", eigen_rows);
+    if (!modes.empty())
+      results.write_table("eigenvalues.csv", eigen_rows);
 
-    // 5. The path from L to the final end distance. At every step the work of the end force
-    //    (trapezoidal); at every output_every of end travel, and at the end, the output
+    // 5. The path from L to the final end distance (leg 1), and with --return_distance back
+    //    out (leg 2). At every step the work of the end force (trapezoidal); at every
+    //    output_every of end travel, and at the end of each leg, the output
     const double travel = p.L - a.end_distance;
     double work = 0, last_force = strip.end_force(), last_distance = p.L;
-    double next_output = p.L - a.output_every;
-    int output_step = 0;
+    double travelled = 0, next_output = a.output_every;
+    int output_step = 0, leg = 1;
     std::vector<nlohmann::json> centreline_rows, slab_rows;
     gelx::scenes::CentrelineAnalysis last_analysis;
     Condensation last_condensation;
@@ -301,7 +376,11 @@ int main(int argc, char* argv[])
                   {"strain_energy_B", energy_B},
                   {"strain_energy_change", change},
                   {"work", work},
-                  {"energy_balance_error", (work - change - dissipated) / work},
+                  // Relative to the largest term: on a return leg W goes back towards 0
+                  {"energy_balance_error",
+                   leg == 0 ? NAN
+                            : (work - change - dissipated)
+                                  / std::max({std::abs(work), std::abs(change), dissipated})},
                   {"negative_eigenvalues", negative},
                   {"segments", last_analysis.segments.size()},
                   {"perversions", last_analysis.perversions.size()},
@@ -313,6 +392,7 @@ int main(int argc, char* argv[])
                   {"energy_peak_width", e.width()},
                   {"energy_peak_anywhere", peak_anywhere},
                   {"output", output_step},
+                  {"leg", leg},
                   {"elapsed", run.elapsed()}});
       results.append_step(row);
       results.write_fields(d, fields.update());
@@ -321,7 +401,10 @@ int main(int argc, char* argv[])
                                    {"x", c.centre[k][0]}, {"y", c.centre[k][1]},
                                    {"z", c.centre[k][2]},
                                    {"curvature", last_analysis.curvature[k]},
-                                   {"twist", last_analysis.twist[k]}});
+                                   {"twist", last_analysis.twist[k]},
+                                   {"d1x", last_analysis.frame[k][0]},
+                                   {"d1y", last_analysis.frame[k][1]},
+                                   {"d1z", last_analysis.frame[k][2]}});
       results.write_table("centreline.csv", centreline_rows);
       for (int n = 0; n < p.nz; ++n)
         slab_rows.push_back({{"output", output_step}, {"end_distance", d}, {"slab", n},
@@ -331,7 +414,8 @@ int main(int argc, char* argv[])
       results.write_table("slab_energy.csv", slab_rows);
       // The last state before the first critical end distance: straight, the same on any
       // number of ranks (tests/CMakeLists.txt compares them)
-      if (d > p.L - modes[0].load_factor * a.probe_shortening)
+      if (leg == 1 && !modes.empty()
+          && d > p.L - modes[0].load_factor * a.probe_shortening)
         run.summary.update({{"prebuckled_end_distance", d},
                             {"prebuckled_end_force", last_force},
                             {"prebuckled_strain_energy_A", energy_A},
@@ -352,13 +436,14 @@ int main(int argc, char* argv[])
     {
       const double force = strip.end_force(), d = strip.end_distance();
       work += 0.5 * (force + last_force) * (d - last_distance);
+      travelled += std::abs(d - last_distance);
       last_force = force;
       last_distance = d;
-      if (d <= next_output + 1e-9 * p.L || last)
+      if (travelled >= next_output - 1e-9 * p.L || last)
       {
         output(method_row, dissipated);
-        while (next_output >= d - 1e-9 * p.L)
-          next_output -= a.output_every;
+        while (next_output <= travelled + 1e-9 * p.L)
+          next_output += a.output_every;
       }
     };
 
@@ -373,17 +458,45 @@ int main(int argc, char* argv[])
       gelx::set_default_option("dynamics_", "damping", "1");
       gelx::set_default_option("dynamics_", "ts_rtol", "1e-3");
       gelx::set_default_option("dynamics_", "ts_atol", "1e-3");
-      gelx::DampedDynamics dynamics(
-          run.comm(), problem, *strip.mass_form(), [&] { return strip.strain_energy(); },
-          [&](double amplitude) { strip.set_end_distance(p.L - amplitude * travel); });
-      const gelx::DynamicsSummary summary = dynamics.run(
-          {[&](const gelx::DynamicsRecord& r)
-           {
-             step_done(r.to_json(), r.dissipated_energy,
-                       r.time >= dynamics.loading_time() + dynamics.hold_time() - 1e-12);
-             run.summary["dynamics"] = dynamics.summary().to_json();
-           }});
-      run.summary["dynamics"] = summary.to_json();
+      // A leg from the current end distance to `to`; `dissipated_before`: the energy the
+      // damping dissipated on the legs before it (each leg's TS counts from 0)
+      auto drive = [&](std::function<void(double)> load, double dissipated_before,
+                       const std::string& key)
+      {
+        gelx::DampedDynamics dynamics(run.comm(), problem, *strip.mass_form(),
+                                      [&] { return strip.strain_energy(); }, load);
+        const gelx::DynamicsSummary summary = dynamics.run(
+            {[&](const gelx::DynamicsRecord& r)
+             {
+               step_done(r.to_json(), dissipated_before + r.dissipated_energy,
+                         r.time >= dynamics.loading_time() + dynamics.hold_time() - 1e-12);
+               run.summary[key] = dynamics.summary().to_json();
+             }});
+        run.summary[key] = summary.to_json();
+        return dissipated_before + summary.dissipated_energy;
+      };
+      // The end from its distance now to `to`
+      auto move_end = [&](double to)
+      {
+        const double from = strip.end_distance();
+        return [&strip, from, to](double amplitude)
+        { strip.set_end_distance(from + amplitude * (to - from)); };
+      };
+      if (a.bonding == "ramp")
+      {
+        // Leg 0: the prestretch builds up with the end held; the balance of the legs after
+        // it starts from where it ends (the prestretch's own work is not the end force's)
+        leg = 0;
+        drive([&](double s) { strip.set_prestretch_fraction(s); }, 0, "bonding_dynamics");
+        std::tie(energy_A0, energy_B0) = strip.strip_energies();
+        leg = 1;
+      }
+      const double dissipated = drive(move_end(a.end_distance), 0, "dynamics");
+      if (a.return_distance > 0)
+      {
+        leg = 2;
+        drive(move_end(a.return_distance), dissipated, "return_dynamics");
+      }
     }
     else
     {
@@ -438,6 +551,93 @@ int main(int argc, char* argv[])
                                   {"energy_density", q.psi}});
       }
       results.write_table("sections.csv", section_rows);
+    }
+
+    // 7. With --equilibria: other equilibria at the final end distance by deflation (the
+    //    thesis' "metastable states ... with very close strain energy but different numbers
+    //    of perversions"). The path's state, settled by the hold, is deflated; the guesses
+    //    are it plus or minus each buckling mode. Each equilibrium: energy, stability (the
+    //    tangent's inertia), perversions, fields (equilibria/fields.xdmf)
+    if (a.equilibria > 0)
+    {
+      gelx::set_default_option("deflation_", "max_solutions", std::to_string(a.equilibria + 1));
+      gelx::DeflationSolver deflation(run.comm(), problem, "deflation_");
+      std::vector<gelx::Equilibrium> found(1);
+      found[0].state = gelx::OwnedVec(problem.create_vector());
+      GELX_PETSC(VecCopy(problem.unknowns(), found[0].state.get()));
+      {
+        Mat K_path = problem.create_matrix();
+        problem.tangent(K_path);
+        found[0].negative_eigenvalues = gelx::negative_eigenvalues(run.comm(), K_path);
+        MatDestroy(&K_path);
+      }
+      deflation.deflate(found[0].state.get());
+      std::vector<gelx::OwnedVec> guesses;
+      std::vector<std::string> guess_names;
+      for (std::size_t k = 0; k < modes.size(); ++k)
+        for (double sign : {1.0, -1.0})
+        {
+          guesses.emplace_back(problem.create_vector());
+          GELX_PETSC(VecCopy(found[0].state.get(), guesses.back().get()));
+          double* x;
+          GELX_PETSC(VecGetArray(guesses.back().get(), &x));
+          PetscInt n;
+          GELX_PETSC(VecGetLocalSize(guesses.back().get(), &n));
+          const auto& mode = modes[k].shape->x()->array();
+          for (PetscInt i = 0; i < n; ++i)
+            x[i] += sign * a.guess_amplitude * mode[i];
+          GELX_PETSC(VecRestoreArray(guesses.back().get(), &x));
+          guess_names.push_back((sign > 0 ? "+mode " : "-mode ") + std::to_string(k + 1));
+        }
+      // One guess at a time (not find()), to know which guess found each equilibrium
+      std::vector<std::string> origin = {"path"};
+      for (std::size_t g = 0; g < guesses.size() && found.size() <= std::size_t(a.equilibria);
+           ++g)
+        if (auto e = deflation.solve(guesses[g].get()))
+        {
+          found.push_back(std::move(*e));
+          origin.push_back(guess_names[g]);
+        }
+      gelx::FieldSeries equilibrium_fields(
+          run.comm(), std::filesystem::path(prm.text("output")) / "equilibria",
+          *strip.mesh().mesh);
+      std::vector<nlohmann::json> rows, rows_centreline;
+      const double path_energy = [&]
+      {
+        problem.set_state(found[0].state.get());
+        return strip.strain_energy();
+      }();
+      for (std::size_t i = 0; i < found.size(); ++i)
+      {
+        problem.set_state(found[i].state.get());
+        const auto [energy_A, energy_B] = strip.strip_energies();
+        const gelx::scenes::CentrelineSamples c = strip.centreline();
+        const auto helices = gelx::scenes::analyse_centreline(c, a.min_frame_turns);
+        rows.push_back({{"equilibrium", i},
+                        {"origin", i == 0 ? "path" : "deflation"},
+                        {"guess", origin[i]},
+                        {"end_distance", strip.end_distance()},
+                        {"strain_energy", energy_A + energy_B},
+                        {"strain_energy_A", energy_A},
+                        {"strain_energy_B", energy_B},
+                        {"energy_difference", energy_A + energy_B - path_energy},
+                        {"negative_eigenvalues", found[i].negative_eigenvalues},
+                        {"segments", helices.segments.size()},
+                        {"perversions", helices.perversions.size()},
+                        {"perversion_positions", joined(helices.perversions)},
+                        {"distance", deflation.distance(found[i].state.get(),
+                                                        found[0].state.get())},
+                        {"newton_iterations", found[i].newton.iterations}});
+        for (std::size_t k = 0; k < c.Z.size(); ++k)
+          rows_centreline.push_back({{"equilibrium", i}, {"Z", c.Z[k]}, {"x", c.centre[k][0]},
+                                     {"y", c.centre[k][1]}, {"z", c.centre[k][2]},
+                                     {"twist", helices.twist[k]}});
+        equilibrium_fields.write(double(i), fields.update());
+      }
+      results.write_table("equilibria.csv", rows);
+      results.write_table("equilibria_centreline.csv", rows_centreline);
+      problem.set_state(found[0].state.get());
+      run.summary["equilibria"] = rows;
     }
   });
 }

@@ -1,0 +1,140 @@
+#include "section.h"
+
+#include <algorithm>
+#include <cmath>
+#include <gelx/parameters.h>
+#include <gmsh.h>
+#include <map>
+#include <sstream>
+
+namespace gelx::scenes
+{
+
+std::vector<Layer> parse_section(const std::string& section, double lateral_stretch)
+{
+  std::vector<Layer> layers;
+  std::istringstream list(section);
+  std::string item;
+  while (std::getline(list, item, ','))
+  {
+    std::istringstream words(item);
+    std::string kind, size, rest;
+    words >> kind >> size >> rest;
+    double width = NAN, thickness = NAN;
+    char times = 0, end = 0;
+    std::istringstream dims(size);
+    dims >> width >> times >> thickness;
+    const bool read = !dims.fail() && times == 'x' && !(dims >> end);
+    if (!read || !rest.empty() || !(width > 0) || !(thickness > 0) || !std::isfinite(width)
+        || !std::isfinite(thickness))
+      throw InputError("section layer '" + item
+                       + "': write KIND WIDTHxTHICKNESS with positive sizes in mm, e.g. B 9x3");
+    if (kind == "A")
+      layers.push_back({true, lateral_stretch * width, lateral_stretch * thickness});
+    else if (kind == "S")
+      layers.push_back({true, width, thickness});
+    else if (kind == "B")
+      layers.push_back({false, width, thickness});
+    else
+      throw InputError("section layer '" + item + "': unknown kind '" + kind
+                       + "' (A: prestretched, natural size; S: prestretched, bonded size; "
+                         "B: stress-free)");
+  }
+  if (layers.empty())
+    throw InputError("the section has no layer");
+  return layers;
+}
+
+TaggedMesh layered_strip_mesh(MPI_Comm comm, const std::vector<Layer>& layers, double L,
+                              const SectionCells& cells)
+{
+  // The breakpoints across: every layer's edges x = +-width/2, shared by the layers above and
+  // below so that the interfaces conform; the narrowest width is the central interval
+  std::vector<double> half;
+  for (const Layer& l : layers)
+    half.push_back(l.width / 2);
+  std::sort(half.begin(), half.end());
+  const double tol = 1e-9 * half.back();
+  half.erase(std::unique(half.begin(), half.end(),
+                         [&](double a, double b) { return b - a < tol; }),
+             half.end());
+  std::vector<double> xs;
+  for (auto h = half.rbegin(); h != half.rend(); ++h)
+    xs.push_back(-*h);
+  xs.insert(xs.end(), half.begin(), half.end());
+  const int central = static_cast<int>(half.size()) - 1;
+  std::vector<double> ys = {-layers[0].thickness, 0};
+  for (std::size_t k = 1; k < layers.size(); ++k)
+    ys.push_back(ys.back() + layers[k].thickness);
+
+  auto build = [&]()
+  {
+    gmsh::model::add("layered_strip");
+    std::map<std::pair<int, int>, int> points; // (level, breakpoint) -> tag
+    auto point = [&](int level, int j)
+    {
+      auto [it, added] = points.try_emplace({level, j}, 0);
+      if (added)
+        it->second = gmsh::model::geo::addPoint(xs[j], ys[level], 0);
+      return it->second;
+    };
+    std::map<std::pair<int, int>, int> lines; // (from, to) point tags -> line tag
+    auto line = [&](int a, int b, int intervals)
+    {
+      if (auto it = lines.find({b, a}); it != lines.end())
+        return -it->second;
+      auto [it, added] = lines.try_emplace({a, b}, 0);
+      if (added)
+      {
+        it->second = gmsh::model::geo::addLine(a, b);
+        gmsh::model::geo::mesh::setTransfiniteCurve(it->second, intervals + 1);
+      }
+      return it->second;
+    };
+    std::vector<int> prestretched_volumes, stressfree_volumes, bases, tops;
+    for (std::size_t k = 0; k < layers.size(); ++k)
+    {
+      const Layer& layer = layers[k];
+      const int through = layer.prestretched ? cells.prestretched : cells.stressfree;
+      for (std::size_t j = 0; j + 1 < xs.size(); ++j)
+      {
+        if (std::max(std::abs(xs[j]), std::abs(xs[j + 1])) > layer.width / 2 + tol)
+          continue; // outside this layer
+        const int across = int(j) == central ? cells.centre : cells.overhang;
+        const int p00 = point(k, j), p10 = point(k, j + 1), p11 = point(k + 1, j + 1),
+                  p01 = point(k + 1, j);
+        const int loop = gmsh::model::geo::addCurveLoop(
+            {line(p00, p10, across), line(p10, p11, through), line(p11, p01, across),
+             line(p01, p00, through)});
+        const int surface = gmsh::model::geo::addPlaneSurface({loop});
+        gmsh::model::geo::mesh::setTransfiniteSurface(surface);
+        gmsh::model::geo::mesh::setRecombine(2, surface);
+        // Extruded one by one, as the .geo kernel keeps shared sides shared
+        gmsh::vectorpair extruded;
+        gmsh::model::geo::extrude({{2, surface}}, 0, 0, L, extruded, {cells.along}, {}, true);
+        bases.push_back(surface);
+        tops.push_back(extruded[0].second);
+        (layer.prestretched ? prestretched_volumes : stressfree_volumes)
+            .push_back(extruded[1].second);
+      }
+    }
+    gmsh::model::geo::synchronize();
+    if (!prestretched_volumes.empty())
+    {
+      gmsh::model::addPhysicalGroup(3, prestretched_volumes, 1);
+      gmsh::model::setPhysicalName(3, 1, "A");
+    }
+    if (!stressfree_volumes.empty())
+    {
+      gmsh::model::addPhysicalGroup(3, stressfree_volumes, 2);
+      gmsh::model::setPhysicalName(3, 2, "B");
+    }
+    gmsh::model::addPhysicalGroup(2, bases, 1);
+    gmsh::model::setPhysicalName(2, 1, "fixed");
+    gmsh::model::addPhysicalGroup(2, tops, 2);
+    gmsh::model::setPhysicalName(2, 2, "moving");
+  };
+  return mesh_gmsh_model(comm, build);
+}
+
+} // namespace gelx::scenes

@@ -4,8 +4,7 @@ creation), the winding of a perversion about the end-to-end axis, the energy con
 each perversion, and whether a final shape is a helix or a V.
 
 Inputs are plain numbers (positions in mm along the reference strip, centreline samples), so
-that the functions can be checked on constructed data; `rows_of_output` reads the scene's
-CSV tables.
+that the functions can be checked on constructed data (tests/bistrip_perversions.py).
 """
 import numpy as np
 
@@ -20,11 +19,6 @@ HELIX_MIN_LATERAL_RATIO = 0.3
 # straight (256 mm, the seeded imperfection grown), 0.63 mm at the onset (250 mm) and 3 to 5 mm
 # as helices; below 0.3 mm the strip is "straight" (not yet a helix nor a V)
 STRAIGHT_MAX_LATERAL = 0.3
-
-
-def rows_of_output(rows, output):
-    """The rows of a per-output table (centreline.csv, slab_energy.csv) of one output."""
-    return [r for r in rows if int(r["output"]) == output]
 
 
 def match(before, after, tolerance):

@@ -40,8 +40,10 @@ section). Our reading of the text:
 The caption does not say which strips w' belongs to; e is our guess (`--section` of a single
 run tests another reading).
 
---quick shrinks every study (nz = 30, two loading times, short paths, two sections, one
-deflation run) to smoke-test the whole sweep in a few minutes; its numbers mean nothing.
+--quick shrinks every study (nz = 30, one loading time, short paths, two sections, one
+deflation run) to smoke-test the whole sweep: about 15 minutes at 1 rank on the shared
+2-core machine (measured per study: fig3.7 3 min, fig3.3 4, fig3.8 5, fig3.10 1, deflation
+~3); its numbers mean nothing.
 
 usage: sweep.py BUILD_DIR OUTPUT_DIR [--np N] [--studies fig3.7,fig3.3,fig3.8,fig3.10,deflation]
                 [--quick] [--fig3.3-w 5] [scene options and PETSc options, given to every run]
@@ -60,6 +62,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.colors import Normalize  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent))
@@ -83,7 +86,9 @@ QUICK = args.quick
 L = 300.0  # mm, the strip's length in every study
 NZ = 30 if QUICK else 60
 THESIS_DISTANCE = 233.0  # mm: Figs. 3.3 and 3.7 (23.3 cm)
-timing = []
+# Each run's wall time, {(study, run): row}, kept across sweeps that run some studies only
+timing = ({(r["study"], r["run"]): r for r in table(args.out, "timing.csv")}
+          if (args.out / "timing.csv").exists() else {})
 
 
 def options(petsc=None, **scene):
@@ -98,14 +103,15 @@ def run(study, name, *opts):
     folder = args.out / "runs" / study / name
     summary = run_scene(args.build, "bistrip", folder, args.np, [*opts, *scene_options],
                         reuse=True)
-    timing.append({"study": study, "run": name, "ranks": summary["mpi_ranks"],
-                   "num_dofs": summary["num_dofs"], "wall_time": summary["wall_time"]})
-    write_csv("timing", timing)
+    timing[study, name] = {"study": study, "run": name, "ranks": summary["mpi_ranks"],
+                           "num_dofs": summary["num_dofs"], "wall_time": summary["wall_time"]}
+    write_csv("timing", list(timing.values()))
     return folder, summary
 
 
-def write_csv(name, rows):
-    fields = list(dict.fromkeys(k for r in rows for k in r))
+def write_csv(name, rows, fields=None):
+    """OUT/<name>.csv; `fields` names the columns of a table that may be empty."""
+    fields = fields or list(dict.fromkeys(k for r in rows for k in r))
     with open(args.out / f"{name}.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields)
         w.writeheader()
@@ -234,7 +240,7 @@ def fig3_3():
     hold. The smooth-step ramp starts and ends at rest, so the end's speed at 23.3 cm is 0 in
     (a) and near its peak in (b): both the mean speed (travel / loading time) and, for (b),
     the speed measured between the outputs around 23.3 cm are reported."""
-    times = [0.2, 1.0] if QUICK else [0.05, 0.1, 0.2, 0.5, 1.0]
+    times = [1.0] if QUICK else [0.05, 0.1, 0.2, 0.5, 1.0]
     far_end = 200 if QUICK else 90
     travel_a, travel_b = L - THESIS_DISTANCE, L - far_end
     every = travel_a / 6
@@ -269,13 +275,13 @@ def fig3_3():
         ax.semilogx([r["mean_end_speed"] for r in chosen], [r["perversions"] for r in chosen],
                     marker, label={"a": "(a) stops at 23.3 cm",
                                    "b": f"(b) passes 23.3 cm on to {far_end / 10:g} cm"}[case])
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set(xlabel="mean end speed (mm/s)", ylabel="perversions at 23.3 cm",
            title=f"Fig. 3.3: loading rate, w = {args.fig3_3_w:g} mm")
     ax.legend()
     ax.grid(alpha=0.3)
     fig.tight_layout()
     save(fig, "fig3.3.png")
-    return rows
 
 
 # ---------------------------------------------------------------------------------------------
@@ -291,8 +297,8 @@ def fig3_8():
     coalescence beyond about two helical periods)."""
     nz, end, every = (30, 290, 2) if QUICK else (240, 200, 2)
     folder, _ = run("fig3.8", "precompressed", *options(
-        section="B 3x3, A 3x3", stretch=0.4, seed="random", nz=nz, end_distance=end, return_distance=L,
-        output_every=every))
+        section="B 3x3, A 3x3", stretch=0.4, seed="random", nz=nz, end_distance=end,
+        return_distance=L, output_every=every))
     steps = table(folder, "steps.csv")
     path = [perversions_of(r) for r in steps]
     near = [2 * pitch(r) if np.isfinite(pitch(r)) else 0 for r in steps]
@@ -308,11 +314,12 @@ def fig3_8():
                "end_distance_before": d[e["output"] - 1], "end_distance": d[e["output"]],
                "kind": e["kind"], "positions": joined(e["positions"]),
                "survivor": e["survivor"]} for e in found]
-    write_csv("fig3.8_events", events)
+    write_csv("fig3.8_events", events, ["leg", "output", "end_distance_before",
+                                        "end_distance", "kind", "positions", "survivor"])
     for k in (1, 2):
         kinds = [e["kind"] for e in events if e["leg"] == k]
-        print(f"fig3.8 leg {k}: " + ", ".join(f"{kinds.count(kind)} {kind}"
-                                               for kind in sorted(set(kinds))))
+        print(f"fig3.8 leg {k}: " + (", ".join(f"{kinds.count(kind)} {kind}"
+                                                for kind in sorted(set(kinds))) or "no events"))
     fig, ax = plt.subplots(figsize=(8, 4))
     count = column(steps, "perversions")
     for k, style in ((1, "-"), (2, "--")):
@@ -323,6 +330,7 @@ def fig3_8():
         at = [e["output"] for e in found if e["kind"] == kind]  # indices into steps
         if at:
             ax.plot(d[at], count[at], marker, ms=8, ls="none", label=kind)
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set(xlabel="end distance (mm)", ylabel="perversions",
            title="Figs. 3.8-3.9: pre-compressed strip (L' = 75 cm)")
     ax.legend(fontsize=8)
@@ -356,7 +364,7 @@ SECTIONS = {"a": ("B 9x3, A 9x3", True), "b": ("B 9x3, S 9x3", True),
 
 def fig3_10():
     """Cross-sections a-f to 20 cm: helix/perversions or V-shape (perversions.shape)."""
-    panels, end = (("a", "d"), 250) if QUICK else (tuple(SECTIONS), 200)
+    panels, end = (("a", "d"), 230) if QUICK else (tuple(SECTIONS), 200)
     rows, strips = [], []
     for panel in panels:
         section, thesis_helix = SECTIONS[panel]
@@ -388,9 +396,10 @@ def fig3_10():
 
 
 # ---------------------------------------------------------------------------------------------
-def deflation(loading_rows):
+def deflation():
     """Metastable states by deflation at 23.3, 18 and 13.9 cm for w = 5 and 9, with the path
-    states of fig3.3 (a) at 23.3 cm when their width and mesh match. Two states are one
+    states of fig3.3 (a) at 23.3 cm (OUT/fig3.3.csv, from this sweep or an earlier one with
+    the same --quick and --fig3.3-w; its width must be 5 or 9). Two states are one
     equilibrium when their perversions agree in number and to 2 mm in position and their
     energies to 1e-4 relative (a path state after its 0.05 s hold is settled to the kinetic
     ratio's few 1e-3 of the energy change, far below the mJ differences between states)."""
@@ -407,12 +416,14 @@ def deflation(loading_rows):
                          "positions": e["perversion_positions"],
                          "negative_eigenvalues": int(e["negative_eigenvalues"]),
                          "distance_to_path_state": e["distance"]})
-    for r in loading_rows if args.fig3_3_w in (5, 9) else []:
+    loading = args.out / "fig3.3.csv"
+    for r in table(args.out, "fig3.3.csv") if loading.exists() and args.fig3_3_w in (5, 9) else []:
         if r["case"] == "a":
             rows.append({"w": args.fig3_3_w, "end_distance": THESIS_DISTANCE,
-                         "source": f"path, loading time {r['loading_time']:.3g} s",
-                         "guess": "", "strain_energy": r["strain_energy"],
-                         "perversions": r["perversions"], "positions": r["perversion_positions"],
+                         "source": f"path, loading time {float(r['loading_time']):.3g} s",
+                         "guess": "", "strain_energy": float(r["strain_energy"]),
+                         "perversions": int(r["perversions"]),
+                         "positions": r["perversion_positions"],
                          "negative_eigenvalues": int(r["negative_eigenvalues"]),
                          "distance_to_path_state": ""})
     for (w, d) in cases:
@@ -454,17 +465,14 @@ chosen = args.studies.split(",")
 unknown = set(chosen) - set(STUDIES)
 if unknown:
     sys.exit(f"sweep.py: error: unknown studies {sorted(unknown)} (known: {STUDIES})")
-failed, loading_rows = [], []
+failed = []
 for study, make in (("fig3.7", fig3_7), ("fig3.3", fig3_3), ("fig3.8", fig3_8),
-                    ("fig3.10", fig3_10), ("deflation", lambda: deflation(loading_rows))):
+                    ("fig3.10", fig3_10), ("deflation", deflation)):
     if study not in chosen:
         continue
     try:
-        result = make()
+        make()
     except subprocess.CalledProcessError as error:  # a failed run: the other studies go on
         print(f"{study}: a run failed ({error}); see its folder under {args.out / 'runs'}")
         failed.append(study)
-        continue
-    if study == "fig3.3":
-        loading_rows = result
 sys.exit(f"sweep.py: failed studies: {', '.join(failed)}" if failed else 0)

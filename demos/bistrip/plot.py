@@ -246,21 +246,26 @@ def plot_free_centreline(out):
     return fig
 
 
-out = pathlib.Path(sys.argv[1])
-summary = out / "summary.json"
-free = summary.exists() and json.loads(summary.read_text())["parameters"]["ends"] == "free"
-# (figure, its inputs, how to draw it)
-figures = [("centreline.png", ["centreline.csv"], plot_free_centreline)] if free else [
-    ("modes.png", ["eigenvalues.csv", "modes/fields.xdmf"], plot_modes),
-    ("shapes.png", ["fields.xdmf"], lambda o: plot_shapes(o, normalized=False)),
-    ("shapes_normalized.png", ["fields.xdmf"], lambda o: plot_shapes(o, normalized=True)),
-    ("slab_energy.png", ["slab_energy.csv", "steps.csv"], plot_slab_energy),
-    ("sections.png", ["sections.csv"], plot_sections),
-    ("path.png", ["steps.csv", "centreline.csv"], plot_path)]
-for name, inputs, draw in figures:
-    missing = [f for f in inputs if not present(out / f)]
-    if missing:
-        print(f"skipped {name}: {', '.join(missing)} missing or empty in {out}")
-        continue
-    draw(out).savefig(out / name, dpi=120, bbox_inches="tight")
-    print(f"wrote {out / name}")
+def main(out):
+    """Every figure whose inputs the run folder holds."""
+    summary = out / "summary.json"
+    free = summary.exists() and json.loads(summary.read_text())["parameters"]["ends"] == "free"
+    # (figure, its inputs, how to draw it)
+    figures = [("centreline.png", ["centreline.csv"], plot_free_centreline)] if free else [
+        ("modes.png", ["eigenvalues.csv", "modes/fields.xdmf"], plot_modes),
+        ("shapes.png", ["fields.xdmf"], lambda o: plot_shapes(o, normalized=False)),
+        ("shapes_normalized.png", ["fields.xdmf"], lambda o: plot_shapes(o, normalized=True)),
+        ("slab_energy.png", ["slab_energy.csv", "steps.csv"], plot_slab_energy),
+        ("sections.png", ["sections.csv"], plot_sections),
+        ("path.png", ["steps.csv", "centreline.csv"], plot_path)]
+    for name, inputs, draw in figures:
+        missing = [f for f in inputs if not present(out / f)]
+        if missing:
+            print(f"skipped {name}: {', '.join(missing)} missing or empty in {out}")
+            continue
+        draw(out).savefig(out / name, dpi=120, bbox_inches="tight")
+        print(f"wrote {out / name}")
+
+
+if __name__ == "__main__":  # sweep.py imports the figures
+    main(pathlib.Path(sys.argv[1]))

@@ -78,9 +78,10 @@ struct Analysis
   /// The imperfection: "mode" (the seed_mode-th buckling mode) or "random" (a smooth random
   /// shape of the centreline with `harmonics` sines along it, Bistrip::random_imperfection)
   std::string seed = "mode";
-  /// How A's prestretch is there: "instant" (bonded carrying all of it, thesis Table 3.1)
-  /// or "ramp" (built up log-linearly at end distance L by damped dynamics first, leg 0:
-  /// for a pre-compressed A, whose bonded state is unstable from the start)
+  /// How A's prestretch is there: "instant" (bonded carrying all of it, thesis Table 3.1);
+  /// for a pre-compressed A, whose bonded state is unstable from the start, a leg 0 at end
+  /// distance L first (damped dynamics, options -bonding_dynamics_): "quench" (bonded with
+  /// all of it, the strip left to buckle) or "ramp" (built up log-linearly)
   std::string bonding = "instant";
   int harmonics = 60;
   /// Equilibria to seek by deflation at the final end distance, besides the path's (0: none)
@@ -181,9 +182,14 @@ int main(int argc, char* argv[])
            [](const std::string& m)
            { return m == "mode" || m == "random" ? "" : "must be mode or random"; });
   prm.bind("analysis", "bonding", a.bonding,
-           "instant (A bonded with its prestretch) or ramp (the prestretch built up first)",
+           "instant (A bonded with its prestretch), quench (then left to buckle at L) or ramp "
+           "(the prestretch built up at L first)",
            [](const std::string& m)
-           { return m == "instant" || m == "ramp" ? "" : "must be instant or ramp"; });
+           {
+             return m == "instant" || m == "quench" || m == "ramp"
+                        ? ""
+                        : "must be instant, quench or ramp";
+           });
   prm.bind("analysis", "harmonics", a.harmonics, "sines along the strip of --seed random",
            gelx::Parameters::at_least_one);
   prm.bind("analysis", "imperfection", a.imperfection,
@@ -216,8 +222,9 @@ int main(int argc, char* argv[])
       throw gelx::InputError("return_distance must lie in (end_distance, L]");
     if (a.equilibria > 0 && a.seed != "mode")
       throw gelx::InputError("equilibria need the buckling modes for guesses: --seed mode");
-    if (a.bonding == "ramp" && (a.seed != "random" || a.method != "dynamics"))
-      throw gelx::InputError("--bonding ramp needs --seed random and --method dynamics");
+    if (a.bonding != "instant" && (a.seed != "random" || a.method != "dynamics"))
+      throw gelx::InputError("--bonding " + a.bonding
+                             + " needs --seed random and --method dynamics");
     if (a.return_distance > 0 && a.method != "dynamics")
       throw gelx::InputError("return_distance needs --method dynamics");
     if (a.seed_mode > a.modes)
@@ -262,8 +269,8 @@ int main(int argc, char* argv[])
     // 3. The bonded state's stability (the inertia of its tangent K at u = 0); about a
     //    stable one, eigen-buckling: K and the tangent under a small end shortening (the
     //    perturbation load), the critical shortening its load factor times the probe's. A
-    //    pre-compressed strip A can make the bonded strip unstable already: it needs its
-    //    prestretch built up (--bonding ramp)
+    //    pre-compressed strip A can make the bonded strip unstable already: it needs a leg
+    //    0 (--bonding quench or ramp)
     Mat K = problem.create_matrix();
     problem.tangent(K);
     const int bonded_negative = gelx::negative_eigenvalues(run.comm(), K);
@@ -272,8 +279,8 @@ int main(int argc, char* argv[])
       throw gelx::InputError(
           "the bonded strip is unstable (" + std::to_string(bonded_negative)
           + " negative eigenvalues of its tangent): eigen-buckling about it does not apply and "
-            "dynamics from it needs steps of 1e-9 s; build the prestretch up with --bonding "
-            "ramp --seed random");
+            "dynamics from it needs steps of 1e-9 s: use --bonding quench or ramp with --seed "
+            "random");
     std::vector<gelx::BucklingMode> modes;
     std::vector<nlohmann::json> eigen_rows;
     if (a.seed == "mode")
@@ -461,10 +468,10 @@ int main(int argc, char* argv[])
       // A leg from the current end distance to `to`; `dissipated_before`: the energy the
       // damping dissipated on the legs before it (each leg's TS counts from 0)
       auto drive = [&](std::function<void(double)> load, double dissipated_before,
-                       const std::string& key)
+                       const std::string& key, const std::string& prefix = "dynamics_")
       {
         gelx::DampedDynamics dynamics(run.comm(), problem, *strip.mass_form(),
-                                      [&] { return strip.strain_energy(); }, load);
+                                      [&] { return strip.strain_energy(); }, load, prefix);
         const gelx::DynamicsSummary summary = dynamics.run(
             {[&](const gelx::DynamicsRecord& r)
              {
@@ -482,12 +489,26 @@ int main(int argc, char* argv[])
         return [&strip, from, to](double amplitude)
         { strip.set_end_distance(from + amplitude * (to - from)); };
       };
-      if (a.bonding == "ramp")
+      if (a.bonding != "instant")
       {
-        // Leg 0: the prestretch builds up with the end held; the balance of the legs after
-        // it starts from where it ends (the prestretch's own work is not the end force's)
+        // Leg 0, the end held at L: a ramp builds the prestretch up over 1 s, at the path's
+        // damping. A quench leaves the bonded strip to buckle: under a fixed load the
+        // first-order dynamics c M u' = -R(u) is a gradient flow whose trajectory does not
+        // depend on c, only its time scale does (t / c), so c is chosen for the steps: the
+        // fastest modes grow at ~1e8/s for c = 1 (stretch 0.4), at a few per second for
+        // c = 1e8; 2000 s of it settle (Fig. 3.8a's pattern from the fastest-growing
+        // wavelengths; measured at nz = 60: after 200 s, 16 perversions and still 6 negative
+        // eigenvalues, from which the path at c = 1 needs microsecond steps). The balance of the legs after it starts from where it ends (the
+        // prestretch's own work is not the end force's)
+        const bool quench = a.bonding == "quench";
+        gelx::set_default_option("bonding_dynamics_", "loading_time", quench ? "2000" : "1");
+        gelx::set_default_option("bonding_dynamics_", "hold_time", "0.05");
+        gelx::set_default_option("bonding_dynamics_", "damping", quench ? "1e8" : "1");
+        gelx::set_default_option("bonding_dynamics_", "ts_rtol", "1e-3");
+        gelx::set_default_option("bonding_dynamics_", "ts_atol", "1e-3");
         leg = 0;
-        drive([&](double s) { strip.set_prestretch_fraction(s); }, 0, "bonding_dynamics");
+        drive([&](double s) { strip.set_prestretch_fraction(quench ? 1 : s); }, 0,
+              "bonding_dynamics", "bonding_dynamics_");
         std::tie(energy_A0, energy_B0) = strip.strip_energies();
         leg = 1;
       }

@@ -8,7 +8,7 @@ that the functions can be checked on constructed data (tests/bistrip_perversions
 """
 import numpy as np
 
-# Helix against V (fig3.10), measured on the default strip (w = 5, /tmp/bs_full2, nz = 100):
+# Helix against V (fig3.10), measured on the default run (w = 5, nz = 100):
 # once helices have formed (end distance <= 240 mm) its frame turns 3.0 to 5.7 times
 # (int |twist| ds / 2 pi) and its centreline's lateral spread ratio is 0.81 to 0.99; the
 # planar buckle just before (250 mm) has 0.15 turns and ratio 0.07. The thresholds sit

@@ -13,11 +13,11 @@
              back out to 30 cm, outputs every 2 mm: perversion count along both legs, events
              (annihilation, coalescence,
              creation) from tracking, and a kymograph of the twist's sign along the strip
-  fig3.10    cross-sections a-f (below), each to 20 cm: helix/perversions, V-shape or straight
+  fig3.10    cross-sections a-f (below), each to 15 cm: helix/perversions, V-shape or straight
              from the final centreline, against the thesis' ticks and crosses
-  deflation  metastable states at 23.3 cm for w = 5 and 9:
-             deflation (--equilibria 4) from the path's state, with the path states of fig3.3 (a) at
-             23.3 cm: distinct equilibria, their energies above the lowest, stability
+  deflation  metastable states at 23.3 cm for w = 5 and 9: deflation (--equilibria 4) from
+             the path's state, the arc-length branch's equilibrium there, and the path states
+             of fig3.3 (a): distinct equilibria, their energies above the lowest, stability
 
 Meshes: nz = 60 Q2 slabs (the bench: 1.4 % energy error at 9 cm for w = 5), fig3.8 too: the
 thesis' ~20 perversions over 30 cm leave ~15 mm per helical segment, 3 slabs of 5 mm, too few
@@ -302,9 +302,16 @@ def fig3_8():
     coalescence when the survivor is within two helical pitches (the thesis sees no
     coalescence beyond about two helical periods)."""
     nz, end, every = (30, 290, 2) if QUICK else (60, 280, 2)
-    folder, _ = run("fig3.8", "precompressed", *options(
-        section="B 3x3, A 3x3", stretch=0.4, seed="random", bonding="quench", nz=nz,
-        end_distance=end, return_distance=L, output_every=every))
+    try:
+        folder, _ = run("fig3.8", "precompressed", *options(
+            section="B 3x3, A 3x3", stretch=0.4, seed="random", bonding="quench", nz=nz,
+            end_distance=end, return_distance=L, output_every=every))
+    except subprocess.CalledProcessError:
+        # The outputs written before a failure stay valid (the scene never rewrites them):
+        # the study shows how far the path got, and says so
+        folder = args.out / "runs" / "fig3.8" / "precompressed"
+        print(f"fig3.8: the run stopped early (see {folder / 'summary.json'}); "
+              "its outputs so far are analysed")
     steps = table(folder, "steps.csv")
     path = [perversions_of(r) for r in steps]
     near = [2 * pitch(r) if np.isfinite(pitch(r)) else 0 for r in steps]
@@ -348,13 +355,18 @@ def fig3_8():
     lines = by_output(folder, "centreline.csv")
     Z = column(lines[int(steps[0]["output"])], "Z")
     sign = np.array([np.sign(column(lines[int(r["output"])], "twist")) for r in steps])
-    fig, axes = plt.subplots(1, 2, figsize=(12, 5), sharey=True)
-    for ax, k in zip(axes, (1, 2)):
+    # One panel per leg the run got through: 0 (the quench at L), 1 (in), 2 (back out)
+    legs = [k for k in (0, 1, 2) if (leg == k).any()]
+    fig, axes = plt.subplots(1, len(legs), figsize=(6 * len(legs), 5), sharey=True,
+                             squeeze=False)
+    axes = axes[0]
+    for ax, k in zip(axes, legs):
         ax.pcolormesh(Z, d[leg == k], sign[leg == k], cmap="coolwarm", norm=Normalize(-1, 1),
                       shading="nearest")
         for i in np.flatnonzero(leg == k):
             ax.plot(path[i], [d[i]] * len(path[i]), "k.", ms=2)
-        ax.set(xlabel="Z (mm)", title={1: "going in", 2: "stretched back"}[k])
+        ax.set(xlabel="Z (mm)",
+               title={0: "left to buckle at L", 1: "going in", 2: "stretched back"}[k])
     axes[0].set_ylabel("end distance (mm)")
     axes[0].invert_yaxis()
     fig.suptitle("sign of the twist along the strip (red: right-handed); dots: perversions")
@@ -369,14 +381,15 @@ SECTIONS = {"a": ("B 9x3, A 9x3", True), "b": ("B 9x3, S 9x3", True),
 
 
 def fig3_10():
-    """Cross-sections a-f to 20 cm: helix/perversions or V-shape (perversions.shape)."""
-    panels, end = (("a", "d"), 230) if QUICK else (tuple(SECTIONS), 200)
+    """Cross-sections a-f to 15 cm: helix/perversions or V-shape (perversions.shape). At 20 cm
+    b and c were still straight and stable (no negative eigenvalue), though linear buckling
+    put their first critical end distances at 264 and 249 mm (measured)."""
+    panels, end = (("a", "d"), 230) if QUICK else (tuple(SECTIONS), 150)
     rows, strips = [], []
     for panel in panels:
         section, thesis_helix = SECTIONS[panel]
-        folder, _ = run("fig3.10", panel, *options(section=section, nz=NZ_SECTIONS,
-                                                     end_distance=end,
-                                                     output_every=20))
+        folder, _ = run("fig3.10", f"{panel}_to{end:g}", *options(
+            section=section, nz=NZ_SECTIONS, end_distance=end, output_every=20))
         last = table(folder, "steps.csv")[-1]
         line = by_output(folder, "centreline.csv")[int(last["output"])]
         got = pv.shape(np.column_stack([column(line, c) for c in "xyz"]), column(line, "twist"))
@@ -404,8 +417,8 @@ def fig3_10():
 
 # ---------------------------------------------------------------------------------------------
 def deflation():
-    """Metastable states by deflation at 23.3, 18 and 13.9 cm for w = 5 and 9, with the path
-    states of fig3.3 (a) at 23.3 cm (OUT/fig3.3.csv, from this sweep or an earlier one with
+    """Metastable states by deflation at 23.3 cm for w = 5 and 9, with the equilibrium on the
+    arc-length branch there and the path states of fig3.3 (a) at 23.3 cm (OUT/fig3.3.csv, from this sweep or an earlier one with
     the same --quick and --fig3.3-w; its width must be 5 or 9). Two states are one
     equilibrium when their perversions agree in number and to 2 mm in position and their
     energies to 1e-4 relative (a path state after its 0.05 s hold is settled to the kinetic
@@ -422,6 +435,21 @@ def deflation():
                          "positions": e["perversion_positions"],
                          "negative_eigenvalues": int(e["negative_eigenvalues"]),
                          "distance_to_path_state": e["distance"]})
+        # The equilibrium arc-length continuation reaches there: it stays on the branch that
+        # continues the straight strip (README, "Arc-length, compared"). Its last point lies
+        # up to one arc-length step past d: its energy is taken back to d with dE/dd = F
+        arc, _ = run("deflation", f"w{w}_d{d:g}_arclength", *options(
+            w=w, nz=NZ, end_distance=d, output_every=(L - d) / 4, method="arclength"))
+        last = table(arc, "steps.csv")[-1]
+        reached = float(last["end_distance"])
+        rows.append({"w": w, "end_distance": d,
+                     "source": f"arc-length branch (at {reached:.2f} mm)", "guess": "",
+                     "strain_energy": float(last["strain_energy_A"])
+                     + float(last["strain_energy_B"]) + float(last["end_force"]) * (d - reached),
+                     "perversions": int(last["perversions"]),
+                     "positions": last["perversion_positions"],
+                     "negative_eigenvalues": int(last["negative_eigenvalues"]),
+                     "distance_to_path_state": ""})
     loading = args.out / "fig3.3.csv"
     for r in table(args.out, "fig3.3.csv") if loading.exists() and args.fig3_3_w in (5, 9) else []:
         if r["case"] == "a":

@@ -1,4 +1,5 @@
 #include "buckling.h"
+#include "timing.h"
 #include "parameters.h"
 #include "petsc_utils.h"
 
@@ -159,6 +160,7 @@ int factored_negative_eigenvalues(KSP ksp)
 
 int negative_eigenvalues(MPI_Comm comm, Mat K)
 {
+  TimedStage timing("stability");
   const std::string prefix = "inertia_";
   default_to_symmetric_factorisation(prefix);
   KSP ksp;
@@ -172,6 +174,15 @@ int negative_eigenvalues(MPI_Comm comm, Mat K)
     negative = factored_negative_eigenvalues(ksp);
   KSPDestroy(&ksp);
   GELX_PETSC(ierr);
+  return negative;
+}
+
+int tangent_negative_eigenvalues(MPI_Comm comm, NonlinearSystem& system)
+{
+  Mat K = system.create_matrix();
+  system.tangent(K);
+  const int negative = negative_eigenvalues(comm, K);
+  MatDestroy(&K);
   return negative;
 }
 

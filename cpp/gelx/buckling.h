@@ -2,6 +2,8 @@
 /// @file buckling.h
 /// Linear (eigenvalue) buckling about a base state, and imperfections seeded from its modes.
 
+#include "system.h"
+
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/mesh/Mesh.h>
 #include <memory>
@@ -74,6 +76,11 @@ int factored_negative_eigenvalues(KSP ksp);
 /// Factorise the symmetric K by LDL^T (default_to_symmetric_factorisation, options prefix
 /// `inertia_`) and return its number of negative eigenvalues. Collective.
 int negative_eigenvalues(MPI_Comm comm, Mat K);
+
+/// The number of negative eigenvalues of `system`'s tangent at its current state (assembled
+/// into a matrix of its own, then negative_eigenvalues): the directions in which that state,
+/// if an equilibrium, is unstable. Collective.
+int tangent_negative_eigenvalues(MPI_Comm comm, NonlinearSystem& system);
 
 /// Add the imperfection sum_i amplitude_i * mode_i to the mesh coordinates (as ABAQUS
 /// *IMPERFECTION does): each mode (largest component 1) is evaluated at the mesh nodes.

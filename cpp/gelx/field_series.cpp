@@ -1,4 +1,5 @@
 #include "field_series.h"
+#include "timing.h"
 
 #include <cstdio>
 #include <dolfinx/common/IndexMap.h>
@@ -116,6 +117,7 @@ std::string FieldSeries::mesh_xml(const dolfinx::mesh::Mesh& mesh) const
 void FieldSeries::write(double t,
                         const std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>>& fields)
 {
+  TimedStage timing("output");
   const int k = size() + 1;
   const std::string file = numbered("step", k);
   const bool parallel = dolfinx::MPI::size(_comm) > 1;

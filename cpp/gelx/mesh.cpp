@@ -1,4 +1,5 @@
 #include "mesh.h"
+#include "timing.h"
 #include "parameters.h"
 
 #include <dolfinx/common/MPI.h>
@@ -213,6 +214,7 @@ TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
                            const std::vector<std::string>& gmsh_args,
                            const std::vector<int>& mirror_axes)
 {
+  TimedStage timing("mesh");
   const int rank = dolfinx::MPI::rank(comm);
   GmshData data;
   if (rank == 0)
@@ -287,6 +289,7 @@ TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
 TaggedMesh box_mesh(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n,
                     dolfinx::mesh::CellType cell)
 {
+  TimedStage timing("mesh");
   auto mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_box(
       comm, {{{0, 0, 0}, {L[0], L[1], L[2]}}}, n, cell, dolfinx::mesh::GhostMode::shared_facet));
   const int fdim = 2;

@@ -1,6 +1,7 @@
 #include "output.h"
 #include "collectives.h"
 #include "parameters.h"
+#include "timing.h"
 
 #include <basix/finite-element.h>
 #include <dolfinx/common/MPI.h>
@@ -126,6 +127,7 @@ std::shared_ptr<const dolfinx::fem::Function<double>> FieldSet::nodal(const std:
 
 std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>> FieldSet::update()
 {
+  TimedStage timing("output");
   std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>> fields;
   for (NodalField& f : _nodal)
   {
@@ -303,6 +305,7 @@ void ResultsWriter::write_fields(
 
 void ResultsWriter::append_step(const nlohmann::json& row)
 {
+  TimedStage timing("output");
   ++_rows;
   if (!_root)
     return;
@@ -320,6 +323,7 @@ void ResultsWriter::append_step(const nlohmann::json& row)
 void ResultsWriter::write_table(const std::string& file_name,
                                 const std::vector<nlohmann::json>& rows)
 {
+  TimedStage timing("output");
   if (!_root || rows.empty())
     return;
   replace_file(_folder / file_name,
@@ -348,6 +352,7 @@ void ResultsWriter::write_summary(const std::string& scene, const std::string& s
 void ResultsWriter::write_stl(const std::string& file_name,
                               const std::vector<Triangle>& triangles)
 {
+  TimedStage timing("output");
   if (!_root)
     return;
   const auto path = _folder / file_name;

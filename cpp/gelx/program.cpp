@@ -2,6 +2,7 @@
 #include "checkpoint.h"
 #include "path.h"
 #include "petsc_utils.h"
+#include "timing.h"
 
 #include <cstdio>
 #include <dolfinx/common/log.h>
@@ -165,6 +166,7 @@ void Run::finish(const std::string& status)
     return;
   nlohmann::json record = summary;
   record["wall_time"] = elapsed();
+  record.update(time_split(_comm, record["wall_time"]));
   record["petsc_options"] = petsc_options();
   if (!_restart_from.empty())
     record["restarted_from"] = {{"step", _restart_record.at("path").at("step")},
@@ -205,6 +207,7 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
   petsc_argv.push_back(nullptr); // MPI reads argv up to a null entry
   char** petsc_args = petsc_argv.data();
   SlepcInitialize(&petsc_argc, &petsc_args, nullptr, nullptr);
+  start_timing();
   // dolfinx logs at INFO level by default; warnings and errors are what a user needs
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
   int rank = 0;

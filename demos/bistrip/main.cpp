@@ -41,6 +41,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <dolfinx/la/petsc.h>
 #include <filesystem>
 #include <gelx/arclength.h>
 #include <gelx/buckling.h>
@@ -51,6 +52,7 @@
 #include <gelx/field_series.h>
 #include <gelx/petsc_utils.h>
 #include <gelx/program.h>
+#include <gelx/timing.h>
 #include <sstream>
 
 namespace
@@ -266,26 +268,29 @@ int main(int argc, char* argv[])
       return;
     }
 
-    // 3. The bonded state's stability (the inertia of its tangent K at u = 0); about a
-    //    stable one, eigen-buckling: K and the tangent under a small end shortening (the
-    //    perturbation load), the critical shortening its load factor times the probe's. A
-    //    pre-compressed strip A can make the bonded strip unstable already: it needs a leg
-    //    0 (--bonding quench or ramp)
-    Mat K = problem.create_matrix();
-    problem.tangent(K);
-    const int bonded_negative = gelx::negative_eigenvalues(run.comm(), K);
-    run.summary["bonded_negative_eigenvalues"] = bonded_negative;
-    if (bonded_negative > 0 && a.bonding == "instant")
-      throw gelx::InputError(
-          "the bonded strip is unstable (" + std::to_string(bonded_negative)
-          + " negative eigenvalues of its tangent): eigen-buckling about it does not apply and "
-            "dynamics from it needs steps of 1e-9 s: use --bonding quench or ramp with --seed "
-            "random");
+    // 3. The bonded state's stability, when A is pre-compressed (a strip A in tension leaves
+    //    the bonded strip stable): the inertia of its tangent at u = 0. Compressed enough, A
+    //    makes it unstable already, and it needs a leg 0 (--bonding quench or ramp). About a
+    //    stable one, eigen-buckling: the tangent K and the tangent under a small end
+    //    shortening (the perturbation load), the critical shortening its load factor times
+    //    the probe's
+    if (p.stretch < 1)
+    {
+      const int bonded_negative = gelx::tangent_negative_eigenvalues(run.comm(), problem);
+      run.summary["bonded_negative_eigenvalues"] = bonded_negative;
+      if (bonded_negative > 0 && a.bonding == "instant")
+        throw gelx::InputError(
+            "the bonded strip is unstable (" + std::to_string(bonded_negative)
+            + " negative eigenvalues of its tangent): eigen-buckling about it does not apply "
+              "and dynamics from it needs steps of 1e-9 s: use --bonding quench or ramp with "
+              "--seed random");
+    }
     std::vector<gelx::BucklingMode> modes;
     std::vector<nlohmann::json> eigen_rows;
     if (a.seed == "mode")
     {
-      Mat K_probe = problem.create_matrix();
+      Mat K = problem.create_matrix(), K_probe = problem.create_matrix();
+      problem.tangent(K);
       strip.set_end_distance(p.L - a.probe_shortening);
       gelx::NewtonSolver probe(run.comm(), "probe_newton_");
       if (!probe.solve(problem).converged)
@@ -293,6 +298,7 @@ int main(int argc, char* argv[])
       problem.tangent(K_probe);
       gelx::LinearBuckling buckling(run.comm());
       modes = buckling.solve(K, K_probe, a.modes, strip.space());
+      MatDestroy(&K);
       MatDestroy(&K_probe);
       strip.set_end_distance(p.L);
       VecSet(problem.unknowns(), 0);
@@ -327,7 +333,6 @@ int main(int argc, char* argv[])
                           {"first_critical_shortening", critical[0]},
                           {"mode_symmetry", symmetry}});
     }
-    MatDestroy(&K);
 
     // 4. The imperfection (and, with --bonding ramp, A without its prestretch yet)
     if (a.bonding == "ramp")
@@ -351,17 +356,17 @@ int main(int argc, char* argv[])
     std::vector<nlohmann::json> centreline_rows, slab_rows;
     gelx::scenes::CentrelineAnalysis last_analysis;
     Condensation last_condensation;
+    int last_negative = -1;
     // `row`: what the path's method says of the step; `dissipated`: the energy its
     // damping has dissipated so far (0 for arc-length)
     auto output = [&](nlohmann::json row, double dissipated)
     {
+      gelx::TimedStage timing("output");
       ++output_step;
       const double d = strip.end_distance();
       const auto [energy_A, energy_B] = strip.strip_energies();
-      Mat K_now = problem.create_matrix();
-      problem.tangent(K_now);
-      const int negative = gelx::negative_eigenvalues(run.comm(), K_now);
-      MatDestroy(&K_now);
+      const int negative = last_negative
+          = gelx::tangent_negative_eigenvalues(run.comm(), problem);
       const gelx::scenes::CentrelineSamples c = strip.centreline();
       last_analysis = gelx::scenes::analyse_centreline(c, a.min_frame_turns);
       const auto slabs = strip.slab_energies();
@@ -586,28 +591,17 @@ int main(int argc, char* argv[])
       std::vector<gelx::Equilibrium> found(1);
       found[0].state = gelx::OwnedVec(problem.create_vector());
       GELX_PETSC(VecCopy(problem.unknowns(), found[0].state.get()));
-      {
-        Mat K_path = problem.create_matrix();
-        problem.tangent(K_path);
-        found[0].negative_eigenvalues = gelx::negative_eigenvalues(run.comm(), K_path);
-        MatDestroy(&K_path);
-      }
+      found[0].negative_eigenvalues = last_negative; // the last output's, of this state
       deflation.deflate(found[0].state.get());
       std::vector<gelx::OwnedVec> guesses;
       std::vector<std::string> guess_names;
       for (std::size_t k = 0; k < modes.size(); ++k)
         for (double sign : {1.0, -1.0})
         {
+          gelx::OwnedVec mode(dolfinx::la::petsc::create_vector_wrap(*modes[k].shape->x()));
           guesses.emplace_back(problem.create_vector());
-          GELX_PETSC(VecCopy(found[0].state.get(), guesses.back().get()));
-          double* x;
-          GELX_PETSC(VecGetArray(guesses.back().get(), &x));
-          PetscInt n;
-          GELX_PETSC(VecGetLocalSize(guesses.back().get(), &n));
-          const auto& mode = modes[k].shape->x()->array();
-          for (PetscInt i = 0; i < n; ++i)
-            x[i] += sign * a.guess_amplitude * mode[i];
-          GELX_PETSC(VecRestoreArray(guesses.back().get(), &x));
+          GELX_PETSC(VecWAXPY(guesses.back().get(), sign * a.guess_amplitude, mode.get(),
+                              found[0].state.get()));
           guess_names.push_back((sign > 0 ? "+mode " : "-mode ") + std::to_string(k + 1));
         }
       // One guess at a time (not find()), to know which guess found each equilibrium
@@ -623,15 +617,13 @@ int main(int argc, char* argv[])
           run.comm(), std::filesystem::path(prm.text("output")) / "equilibria",
           *strip.mesh().mesh);
       std::vector<nlohmann::json> rows, rows_centreline;
-      const double path_energy = [&]
-      {
-        problem.set_state(found[0].state.get());
-        return strip.strain_energy();
-      }();
+      double path_energy = NAN; // found[0]'s, the first in the loop
       for (std::size_t i = 0; i < found.size(); ++i)
       {
         problem.set_state(found[i].state.get());
         const auto [energy_A, energy_B] = strip.strip_energies();
+        if (i == 0)
+          path_energy = energy_A + energy_B;
         const gelx::scenes::CentrelineSamples c = strip.centreline();
         const auto helices = gelx::scenes::analyse_centreline(c, a.min_frame_turns);
         rows.push_back({{"equilibrium", i},

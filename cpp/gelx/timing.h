@@ -1,0 +1,40 @@
+#pragma once
+/// @file timing.h
+/// Where a run's wall time goes, for summary.json: PETSc's own event log for the work inside
+/// its solvers (SNES residual and tangent evaluations, KSP solves) and gelx log stages for the
+/// work PETSc does not see (meshing, output, stability counts). PETSc's log is used, not
+/// timers of our own, so that `-log_view` shows the same split in full detail.
+
+#include <mpi.h>
+#include <nlohmann/json.hpp>
+#include <petsclog.h>
+#include <string>
+
+namespace gelx
+{
+
+/// The PETSc log stage `name` ("mesh", "output" or "stability"), pushed for the lifetime of
+/// the object. PETSc stages are exclusive: a stage pushed inside another takes its time from
+/// the enclosing one (a stability count inside an output is not output time).
+class TimedStage
+{
+public:
+  explicit TimedStage(const std::string& name);
+  ~TimedStage();
+  TimedStage(const TimedStage&) = delete;
+  TimedStage& operator=(const TimedStage&) = delete;
+};
+
+/// Start PETSc's default event log (what -log_view turns on): called once, after
+/// PetscInitialize, by run_program.
+void start_timing();
+
+/// The split of `wall_time` (s, this rank's run so far) into mesh, assembly (the SNES residual
+/// and tangent evaluations), solve (the KSP solves and preconditioner set-ups: the
+/// factorisations, those of SLEPc's spectral transformations too), stability,
+/// output and other (the rest: set-up, scene analysis, time stepping's own work), each the
+/// largest over the ranks; and the peak resident memory of the ranks (MiB: the sum over
+/// ranks, and the largest one): {"time_split": {...}, "peak_memory_MiB": {...}}. Collective.
+nlohmann::json time_split(MPI_Comm comm, double wall_time);
+
+} // namespace gelx

@@ -33,6 +33,7 @@ A clamped run (Table 3.1) checks:
   z = L/2 within one slab (the issue's bound), between two helical segments of opposite
   chirality each of whose frames turns at least half a turn (measured 1.1 at 245 mm; the
   detection itself counts a quarter turn as a helix).
+- summary.json's time split: no part negative, assembly and solve measured (checks.time_split);
 - regression, next to those: the coarse mesh's first critical shortening (stored from this
   mesh, 1e-4: the eigenvalue is converged to 1e-10 by SLEPc and the mesh is fixed), and its
   end force and strip energies at 24.5 cm after the hold (1e-6: the settled state is an
@@ -58,6 +59,7 @@ summary = json.loads((out / "summary.json").read_text())
 prm = summary["parameters"]
 checks = Checks()
 checks.require(f"the run completed ({summary['status']})", summary["status"] == "completed")
+checks.time_split(summary)
 
 
 def uniaxial(stretch):

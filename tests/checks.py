@@ -31,6 +31,17 @@ class Checks:
         self.require(f"{what}: Newton met |R| <= max(1e-12, 1e-10 |R0|) ({len(rows)} steps, "
                      f"worst {worst:.3g} of it)", worst <= 1)
 
+    def time_split(self, summary):
+        """summary.json's split of the wall time: every part measured (not negative), the
+        solvers' parts non-zero in a run that solves, and the parts adding up to no more than
+        the wall time (other >= 0): a PETSc event counted twice (one nested in another)
+        would make 'other' negative."""
+        split = summary["time_split"]
+        self.require("time split: " + ", ".join(f"{k} {v:.3g} s" for k, v in split.items())
+                     + f" of {summary['wall_time']:.3g} s; assembly and solve > 0, none < 0",
+                     split["assembly"] > 0 and split["solve"] > 0
+                     and min(split.values()) >= 0)
+
     def finish(self):
         print(f"{self.passed} passed, {self.failed} failed")
         sys.exit(1 if self.failed else 0)

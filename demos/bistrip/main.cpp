@@ -407,7 +407,9 @@ int main(int argc, char* argv[])
                   {"leg", leg},
                   {"elapsed", run.elapsed()}});
       results.append_step(row);
-      results.write_fields(d, fields.update());
+      // Stamped with the output's number, not its end distance, which goes down and back up
+      // over the legs: ParaView plays a series in the order of its time stamps
+      results.write_fields(output_step, fields.update());
       for (std::size_t k = 0; k < c.Z.size(); ++k)
         centreline_rows.push_back({{"output", output_step}, {"end_distance", d}, {"Z", c.Z[k]},
                                    {"x", c.centre[k][0]}, {"y", c.centre[k][1]},

@@ -118,7 +118,8 @@ def plot_modes(out):
 
 def plot_shapes(out, normalized):
     series = FieldSeries(out)
-    t = series.times
+    # Output i of fields.xdmf is row i of steps.csv
+    t = column(table(out, "steps.csv"), "end_distance")[:len(series.times)]
     # The last output of each end distance (the final one is written again after the hold),
     # then six of them spread over the run, the last always among them
     distinct = [i for i in range(len(t)) if i + 1 == len(t) or t[i + 1] != t[i]]

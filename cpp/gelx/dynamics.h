@@ -96,7 +96,8 @@ struct DynamicsSummary
 ///
 /// Options (prefix PREFIX, default `dynamics_`): gelx's loading_time (T, 1), hold_time (0),
 /// damping (c, 1), dt (first step, T / 50), dissipation_bound (ED / SE, 0.05, ABAQUS'
-/// recommended ALLSD / ALLIE) and kinetic_bound (KE / SE, 0.05); PETSc's -PREFIX_ts_*
+/// recommended ALLSD / ALLIE), kinetic_bound (KE / SE, 0.05) and min_step (1e-12 T: an
+/// accepted step below it ends the run with a ConvergenceError); PETSc's -PREFIX_ts_*
 /// (defaults: ts_type bdf, ts_bdf_order 2, ts_adapt_type basic, ts_adapt_dt_max T / 10 so that
 /// the ramp's energies are resolved, ts_max_snes_failures -1, ts_max_reject 20,
 /// ts_max_steps 10000), -PREFIX_snes_*, -PREFIX_ksp_* and -PREFIX_pc_* (a direct solve).
@@ -156,7 +157,7 @@ private:
   std::function<double()> _strain_energy;
   std::function<void(double)> _apply_load;
   std::string _prefix;
-  double _loading_time, _hold_time, _damping, _dissipation_bound, _kinetic_bound;
+  double _loading_time, _hold_time, _damping, _dissipation_bound, _kinetic_bound, _min_step;
   TS _ts = nullptr;
   Mat _mass = nullptr;   ///< M, for the energies
   Mat _damped = nullptr; ///< c M_D, for F and its Jacobian

@@ -273,6 +273,18 @@ if scene == "block":
     rows = (out / "steps.csv").read_text().strip().splitlines()
     checks.require(f"forced_divergence: steps.csv has {len(rows) - 1} data row", len(rows) == 2)
 
+if scene == "bistrip":
+    # A damped path whose time steps fall below -dynamics_min_step stops with one line and a
+    # failed summary instead of stepping on (here at once: the first step, T / 50, is below
+    # the floor of T / 2)
+    out = work / "step_floor"
+    p = run(["--output", str(out), "--nz", "10", "--end_distance", "290", "--modes", "1",
+             "-dynamics_min_step", "0.5"], timeout=300)
+    one_error_line("step_floor", p, "below -dynamics_min_step 0.5 s")
+    summary = read_summary(out)
+    checks.require(f"step_floor: summary status {summary.get('status', '')[:60]!r}...",
+                   summary.get("status", "").startswith("failed: damped dynamics stopped"))
+
 if scene == "flory_rehner":
     # N nu / V_m = 1e300 has no swollen state in (0, 1): the first map fails after the folder
     # was made

@@ -78,6 +78,14 @@ PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec u, void* ctx)
   return guarded_callback(d.callback_error, [&] { d.accepted(int(step), t, u); });
 }
 
+PetscErrorCode post_step(TS ts)
+{
+  void* ctx;
+  PetscCall(TSGetApplicationContext(ts, &ctx));
+  DampedDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.check_step_size(); });
+}
+
 double positive_option(const std::string& prefix, const std::string& name, double fallback,
                        bool zero_allowed = false)
 {
@@ -179,6 +187,8 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(VecDestroy(&r));
   GELX_PETSC(TSSetIJacobian(_ts, _jacobian, _jacobian, gelx::form_jacobian, this));
   GELX_PETSC(TSMonitorSet(_ts, monitor, this, nullptr));
+  GELX_PETSC(TSSetApplicationContext(_ts, this));
+  GELX_PETSC(TSSetPostStep(_ts, post_step));
   GELX_PETSC(TSSetFromOptions(_ts));
   // A step TS cannot take (more than ts_max_reject rejections) ends TSSolve with a negative
   // converged reason, which run() reports as a ConvergenceError, instead of a PETSc error
@@ -248,23 +258,27 @@ void DampedDynamics::velocity(double t, Vec u)
   }
 }
 
-void DampedDynamics::accepted(int step, double t, Vec u)
+void DampedDynamics::check_step_size()
 {
-  const bool first = _history.empty();
   // Why a floor of our own: PETSc 3.18's TSAdapt retries a failed stage at a quarter of its
   // step without any lower bound (-ts_adapt_dt_min only clamps the steps it proposes), and
   // -ts_max_reject counts rejections in a row only. A state the flow drives to the edge of
   // admissibility (an element's volume going to zero: the pre-compressed bistrip at nz = 60,
   // measured) then has every other stage rejected and the others accepted at 1e-16 s, for
-  // ever. An accepted step below min_step ends the run instead
-  if (!first && t - _history_time.front() < _min_step)
+  // ever. A step below min_step stops TS as a step it could not take
+  PetscReal t, t_previous;
+  GELX_PETSC(TSGetTime(_ts, &t));
+  GELX_PETSC(TSGetPrevTime(_ts, &t_previous));
+  if (t - t_previous < _min_step)
   {
-    std::ostringstream what;
-    what << "damped dynamics stopped at t = " << t << ": a step of "
-         << t - _history_time.front() << " s, below -" << _prefix << "min_step " << _min_step
-         << " s (the path runs into states it cannot take: failed or inadmissible stages)";
-    throw ConvergenceError(what.str());
+    _too_small_step = t - t_previous;
+    GELX_PETSC(TSSetConvergedReason(_ts, TS_DIVERGED_STEP_REJECTED));
   }
+}
+
+void DampedDynamics::accepted(int step, double t, Vec u)
+{
+  const bool first = _history.empty();
   if (!first)
   {
     set_time(t);
@@ -361,6 +375,7 @@ DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observe
   GELX_PETSC(TSSetTime(_ts, 0.0));
   GELX_PETSC(TSSetStepNumber(_ts, 0));
   callback_error = nullptr;
+  _too_small_step = 0;
   const PetscErrorCode ierr = TSSolve(_ts, x.get());
   _observers = nullptr;
   if (callback_error)
@@ -376,9 +391,15 @@ DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observe
   PetscReal end_time;
   GELX_PETSC(TSGetMaxTime(_ts, &end_time));
   if (reason < 0 || t < end_time * (1 - 1e-12))
-    throw ConvergenceError(std::string("damped dynamics stopped at t = ") + std::to_string(t)
-                           + " of " + std::to_string(end_time) + ": "
-                           + TSConvergedReasons[reason]);
+  {
+    std::ostringstream what;
+    what << "damped dynamics stopped at t = " << t << " of " << end_time << ": "
+         << TSConvergedReasons[reason];
+    if (_too_small_step > 0)
+      what << " (a step of " << _too_small_step << " s, below -" << _prefix << "min_step "
+           << _min_step << " s: the path runs into states it cannot take)";
+    throw ConvergenceError(what.str());
+  }
   return _summary;
 }
 

@@ -144,6 +144,8 @@ public:
   void form_jacobian(double t, Vec u, double shift, Mat P);
   /// Energies and observers after an accepted step.
   void accepted(int step, double t, Vec u);
+  /// After a step: a step below min_step stops TS (DIVERGED_STEP_REJECTED).
+  void check_step_size();
   /// An exception a callback raised, rethrown by run() after TSSolve returns
   std::exception_ptr callback_error;
 
@@ -158,6 +160,7 @@ private:
   std::function<void(double)> _apply_load;
   std::string _prefix;
   double _loading_time, _hold_time, _damping, _dissipation_bound, _kinetic_bound, _min_step;
+  double _too_small_step = 0; ///< the step that stopped the run, if one did
   TS _ts = nullptr;
   Mat _mass = nullptr;   ///< M, for the energies
   Mat _damped = nullptr; ///< c M_D, for F and its Jacobian

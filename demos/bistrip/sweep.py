@@ -21,11 +21,10 @@
              reaches there stretched back from 13.9 cm, and the path states of fig3.3 (a):
              distinct equilibria, their energies above the lowest, stability
 
-Meshes: nz = 60 Q2 slabs (the bench: 1.4 % energy error at 9 cm for w = 5), fig3.8 too: the
-thesis' ~20 perversions over 30 cm leave ~15 mm per helical segment, 3 slabs of 5 mm, too few
-to resolve them (the default strip's final helices get 3.7 slabs per pitch at nz = 100), but
-the pre-compression's build-up alone takes ~10 minutes at nz = 60 (measured): a finer mesh is
-a run of hours, not made here.
+Meshes: nz = 60 Q2 slabs (the bench: 1.4 % energy error at 9 cm for w = 5), fig3.8 too, and
+fig3.8 again at nz = 30: the quench's perversion count follows the mesh (4, 8, 18 at nz = 15,
+30, 60, measured), and nz = 120's quench needed steps 1e4 times smaller than nz = 60's
+(measured over its first 5 minutes): a run of many hours, not made here.
 
 Cross-sections of Fig. 3.10 (w0 = 9 mm, h = 3 mm, h' = 0.2 mm; layers bottom to top; B
 stress-free, A prestretched given by its natural section, S prestretched given by its bonded

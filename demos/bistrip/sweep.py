@@ -14,6 +14,9 @@
              (annihilation, coalescence, creation) from tracking, a kymograph of the twist's
              sign along the strip, the states in and out at the same end distance, and the
              same run at nz / 2 (count, positions, time split)
+  fig3.9     stretching back (w = 9, as the caption of Fig. 3.9 reads): in to 9 cm and back
+             out to 30 cm, outputs every 5 mm: perversions, helix amplitude and helical periods
+             on both ways, and the states in and out at the same end distance
   fig3.10    cross-sections a-f (below), each to 15 cm: helix/perversions, V-shape or straight
              from the final centreline, against the thesis' ticks and crosses
   deflation  metastable states at 23.3 cm for w = 5 and 9: deflation (--equilibria 4) from
@@ -46,7 +49,8 @@ deflation run) to smoke-test the whole sweep: about 15 minutes at 1 rank on the 
 2-core machine (measured per study: fig3.7 3 min, fig3.3 4, fig3.8 5, fig3.10 1, deflation
 ~3); its numbers mean nothing.
 
-usage: sweep.py BUILD_DIR OUTPUT_DIR [--np N] [--studies fig3.7,fig3.3,fig3.8,fig3.10,deflation]
+usage: sweep.py BUILD_DIR OUTPUT_DIR [--np N]
+                [--studies fig3.7,fig3.3,fig3.8,fig3.9,fig3.10,deflation]
                 [--quick] [--fig3.3-w 5] [scene options and PETSc options, given to every run]
 Results: OUTPUT_DIR/<study>.csv (+ extra CSVs) and .png, OUTPUT_DIR/timing.csv (each run's
 wall time), runs under OUTPUT_DIR/runs/<study>/<name>. A run folder that holds a completed run
@@ -74,7 +78,7 @@ from studies import run_scene  # noqa: E402  (demos/studies.py)
 import perversions as pv  # noqa: E402
 from plot import column, perversions_of, plot_shapes, stacked_strips, table  # noqa: E402
 
-STUDIES = ["fig3.7", "fig3.3", "fig3.8", "fig3.10", "deflation"]
+STUDIES = ["fig3.7", "fig3.3", "fig3.8", "fig3.9", "fig3.10", "deflation"]
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("build", type=pathlib.Path)
 parser.add_argument("out", type=pathlib.Path)
@@ -459,6 +463,53 @@ def mesh_row(name, folder):
     return row
 
 
+def fig3_9():
+    """Stretching back, as Fig. 3.9's caption has it (w = 9 mm, L' = L / 3.5: the prestretched
+    strip; its text speaks of the pre-compressed one, whose path ends before, fig3.8): in to
+    9 cm, then back out to 30 cm, outputs every 5 mm. At each output the perversions, the
+    helices' amplitude (helix_radius: their length-weighted mean radius) and the number of
+    helical periods, the frame's turns int |twist| ds / 2 pi (perversions.shape); and the
+    states in and out at the same end distance (hysteresis)."""
+    end, every = (200, 10) if QUICK else (90, 5)
+    folder, _ = run("fig3.9", "w9", *options(w=9, nz=NZ, end_distance=end, return_distance=L,
+                                             output_every=every))
+    steps = table(folder, "steps.csv")
+    lines = by_output(folder, "centreline.csv")
+    rows = []
+    for r in steps:
+        line = lines[int(r["output"])]
+        got = pv.shape(np.column_stack([column(line, c) for c in "xyz"]), column(line, "twist"))
+        radius = r["helix_radius"]
+        rows.append({"leg": int(r["leg"]), "end_distance": float(r["end_distance"]),
+                     "perversions": int(r["perversions"]), "positions": r["perversion_positions"],
+                     "helix_radius": float(radius) if radius not in ("", "nan", "null") else np.nan,
+                     "helical_periods": got["frame_turns"], "shape": got["shape"],
+                     "negative_eigenvalues": int(r["negative_eigenvalues"])})
+    write_csv("fig3.9", rows)
+    write_csv("fig3.9_hysteresis", hysteresis(steps, every),
+              ["end_distance", "distance_shift", "perversions_in", "perversions_out",
+               "strain_energy_in", "strain_energy_out", "energy_out_minus_in",
+               "negative_eigenvalues_in", "negative_eigenvalues_out"])
+    fig, axes = plt.subplots(1, 3, figsize=(13, 3.8))
+    for k, style, label in ((1, "-", "going in"), (2, "--", "stretched back")):
+        leg = [r for r in rows if r["leg"] == k]
+        d = [r["end_distance"] for r in leg]
+        for ax, key in zip(axes, ("perversions", "helical_periods", "helix_radius")):
+            # A radius only where the shape is helical (a barely bent strip's fitted circle
+            # is hundreds of mm wide)
+            ax.plot(d, [r[key] if key != "helix_radius" or r["shape"] == "helix/perversions"
+                        else np.nan for r in leg], style, marker=".", label=label)
+    for ax, label in zip(axes, ("perversions", "helical periods (frame turns)",
+                                "helix radius (mm)")):
+        ax.set(xlabel="end distance (mm)", ylabel=label)
+        ax.grid(alpha=0.3)
+    axes[0].yaxis.set_major_locator(MaxNLocator(integer=True))
+    axes[0].legend(fontsize=8)
+    fig.suptitle("Fig. 3.9: the strip (w = 9 mm) driven in to 9 cm and stretched back to 30 cm")
+    fig.tight_layout()
+    save(fig, "fig3.9.png")
+
+
 # ---------------------------------------------------------------------------------------------
 SECTIONS = {"a": ("B 9x3, A 9x3", True), "b": ("B 9x3, S 9x3", True),
             "c": ("B 9x3, S 9x3, B 9x0.2", True), "d": ("B 9x3, S 9x3, B 9x3", False),
@@ -600,7 +651,7 @@ if unknown:
     sys.exit(f"sweep.py: error: unknown studies {sorted(unknown)} (known: {STUDIES})")
 failed = []
 for study, make in (("fig3.7", fig3_7), ("fig3.3", fig3_3), ("fig3.8", fig3_8),
-                    ("fig3.10", fig3_10), ("deflation", deflation)):
+                    ("fig3.9", fig3_9), ("fig3.10", fig3_10), ("deflation", deflation)):
     if study not in chosen:
         continue
     try:

@@ -26,6 +26,8 @@ double event_time(const char* event)
 {
   PetscLogEvent id;
   GELX_PETSC(PetscLogEventGetId(event, &id));
+  if (id < 0) // a package the run never used registered none
+    return 0;
   PetscStageLog log;
   GELX_PETSC(PetscLogGetStageLog(&log));
   double time = 0;

@@ -179,6 +179,8 @@ int negative_eigenvalues(MPI_Comm comm, Mat K)
 
 int tangent_negative_eigenvalues(MPI_Comm comm, NonlinearSystem& system)
 {
+  // The tangent's assembly is part of the stability count, not of its caller's stage
+  TimedStage timing("stability");
   Mat K = system.create_matrix();
   system.tangent(K);
   const int negative = negative_eigenvalues(comm, K);

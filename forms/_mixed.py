@@ -51,4 +51,12 @@ def build(cell, displacement_degree=2):
     # The current volume (int J dX): the incompressibility that the pressure enforces weakly
     out["volume"] = J * dx
     forms.append(out["volume"])
+    # -1/G int p q dX, zero in the displacement rows: its pressure block preconditions the Schur
+    # complement -B A^-1 B^T of the fieldsplit linear solver, to which it is spectrally
+    # equivalent for an incompressible solid of shear modulus G (the Stokes analogy); the sign
+    # is the Schur complement's (A is positive definite)
+    _, q = ufl.split(ufl.TestFunction(W))
+    _, r = ufl.split(ufl.TrialFunction(W))
+    out["pressure_mass"] = -r * q / c["G"] * dx
+    forms.append(out["pressure_mass"])
     return out, forms, expressions

@@ -39,6 +39,10 @@ CASES = {
         ("negative_modulus", ["--G", "-1"], "must be positive"),
         ("stretch_not_a_number", ["--stretch", "long"], "is not a finite number"),
         ("dt_above_dt_max", ["--dt", "0.5", "--dt_max", "0.25"], "dt_min <= dt <= dt_max"),
+        ("unknown_linear_solver", ["-newton_linear_solver", "cholesky"],
+         "unknown option set (direct, amg, fieldsplit)"),
+        ("fieldsplit_not_mixed", ["-newton_linear_solver", "fieldsplit"],
+         "needs a mixed displacement-pressure space"),
     ],
     "pyramid": [
         ("W_equal_L", ["--W", "8", "--L", "8"], "W must exceed the pyramid width L"),
@@ -95,7 +99,7 @@ CASES = {
          "seed_mode must be one of the computed modes"),
     ],
 }
-TWO_RANKS = {"block": ["missing_mesh", "dt_above_dt_max"], "pyramid": ["W_below_L"],
+TWO_RANKS = {"block": ["missing_mesh", "dt_above_dt_max", "fieldsplit_not_mixed"], "pyramid": ["W_below_L"],
              "inflation": ["B_equal_A"], "buckling": ["ty_equal_tx"],
              "fiber_gel": ["cell_narrower_than_fiber", "phi_f_beyond_one"],
              "bistrip": ["unknown_layer_kind", "end_distance_beyond_L"]}

@@ -177,7 +177,7 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   // the globalisation (its predictor starts closer), not a line search
   set_default_option(prefix, "snes_linesearch_type", "basic");
   set_default_option(prefix, "snes_max_it", "10");
-  default_to_direct_solver(prefix);
+  set_linear_solver_defaults(prefix);
 
   GELX_PETSC(TSCreate(comm, &_ts));
   GELX_PETSC(TSSetOptionsPrefix(_ts, prefix.c_str()));

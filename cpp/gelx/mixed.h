@@ -10,6 +10,7 @@
 #include <dolfinx/fem/FunctionSpace.h>
 #include <dolfinx/mesh/MeshTags.h>
 #include <memory>
+#include <petscpc.h>
 
 namespace gelx
 {
@@ -31,5 +32,14 @@ void copy_sub_function(const dolfinx::fem::Function<double>& w, int i,
 std::array<double, 3>
 reaction_force(const NonlinearProblem& problem, const dolfinx::fem::FunctionSpace& displacement,
                const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags, int tag);
+
+/// Define the fields `u` (displacement) and `p` (pressure) of a PCFIELDSPLIT preconditioner
+/// of `system`'s tangent, whose base problem lives on a mixed space (sub-space 0 the
+/// displacement, 1 the pressure): the index sets of their unknowns in system's layout (through
+/// unknown_of_problem_dof, so a constrained space works too), and on `u` the rigid-body modes
+/// as its near-nullspace, which PCFIELDSPLIT hands to the displacement block's matrix (GAMG).
+/// Throws InputError when the space is not mixed or some unknown is neither (a macro unknown,
+/// an arc-length load factor). Collective.
+void define_displacement_pressure_fields(PC pc, NonlinearSystem& system);
 
 } // namespace gelx

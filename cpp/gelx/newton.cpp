@@ -1,4 +1,5 @@
 #include "newton.h"
+#include "mixed.h"
 #include "petsc_utils.h"
 
 #include <cmath>
@@ -202,7 +203,7 @@ NewtonSolver::NewtonSolver(MPI_Comm comm, const std::string& prefix)
   set_default_option(prefix, "snes_atol", "1e-12");
   set_default_option(prefix, "snes_stol", "1e-14");
   set_default_option(prefix, "snes_max_it", "25");
-  default_to_direct_solver(prefix);
+  set_linear_solver_defaults(prefix);
   GELX_PETSC(SNESCreate(comm, &_snes));
   GELX_PETSC(SNESSetOptionsPrefix(_snes, prefix.c_str()));
   // 1e-8: the solution to about the digits the residual tolerance leaves (a residual reduced
@@ -240,6 +241,15 @@ void NewtonSolver::set_up(NonlinearSystem& system)
   GELX_PETSC(SNESSetUpdate(_snes, commit_iterate));
   system.configure(_snes);
   GELX_PETSC(SNESSetFromOptions(_snes));
+  // A block preconditioner needs the fields, which only the system knows
+  KSP ksp;
+  GELX_PETSC(SNESGetKSP(_snes, &ksp));
+  PC pc;
+  GELX_PETSC(KSPGetPC(ksp, &pc));
+  PetscBool split;
+  GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCFIELDSPLIT, &split));
+  if (split)
+    define_displacement_pressure_fields(pc, system);
   // After the type is set: creating a VI type installs its own convergence test
   GELX_PETSC(SNESSetConvergenceTest(_snes, converged, context, nullptr));
   PetscBool bounded;

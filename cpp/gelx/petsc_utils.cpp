@@ -1,4 +1,5 @@
 #include "petsc_utils.h"
+#include "parameters.h"
 
 #include <set>
 
@@ -40,16 +41,50 @@ void set_default_option(const std::string& prefix, const std::string& name,
 
 bool is_default_option(const std::string& option) { return defaults_set().count(option) > 0; }
 
-void default_to_direct_solver(const std::string& prefix)
+void set_linear_solver_defaults(const std::string& prefix)
 {
-  set_default_option(prefix, "ksp_type", "preonly");
-  set_default_option(prefix, "pc_type", "lu");
-  set_default_option(prefix, "pc_factor_mat_solver_type", "mumps");
+  const std::string set = string_option(prefix, "linear_solver", "direct");
+  // the Krylov sets: a restart long enough for the few hundred iterations of a hard tangent,
+  // and a bound that makes a preconditioner that fails show as a failed step, not an hour
+  auto krylov = [&](const char* type)
+  {
+    set_default_option(prefix, "ksp_type", type);
+    set_default_option(prefix, "ksp_gmres_restart", "200");
+    set_default_option(prefix, "ksp_rtol", "1e-10");
+    set_default_option(prefix, "ksp_max_it", "2000");
+  };
+  if (set == "direct")
+  {
+    set_default_option(prefix, "ksp_type", "preonly");
+    set_default_option(prefix, "pc_type", "lu");
+    set_default_option(prefix, "pc_factor_mat_solver_type", "mumps");
+  }
+  else if (set == "amg")
+  {
+    krylov("gmres");
+    set_default_option(prefix, "pc_type", "gamg");
+  }
+  else if (set == "fieldsplit")
+  {
+    // FGMRES: the Schur complement's inner solves make the preconditioner vary slightly
+    krylov("fgmres");
+    set_default_option(prefix, "pc_type", "fieldsplit");
+    set_default_option(prefix, "pc_fieldsplit_type", "schur");
+    set_default_option(prefix, "pc_fieldsplit_schur_fact_type", "full");
+    set_default_option(prefix, "pc_fieldsplit_schur_precondition", "selfp");
+    set_default_option(prefix, "fieldsplit_u_ksp_type", "preonly");
+    set_default_option(prefix, "fieldsplit_u_pc_type", "gamg");
+    set_default_option(prefix, "fieldsplit_p_ksp_type", "preonly");
+    set_default_option(prefix, "fieldsplit_p_pc_type", "jacobi");
+  }
+  else
+    throw InputError("-" + prefix + "linear_solver " + set
+                     + ": unknown option set (direct, amg, fieldsplit)");
 }
 
 KSP create_linear_solver(MPI_Comm comm, const std::string& prefix)
 {
-  default_to_direct_solver(prefix);
+  set_linear_solver_defaults(prefix);
   KSP ksp;
   GELX_PETSC(KSPCreate(comm, &ksp));
   GELX_PETSC(KSPSetOptionsPrefix(ksp, prefix.c_str()));

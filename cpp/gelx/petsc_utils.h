@@ -44,12 +44,26 @@ void set_default_option(const std::string& prefix, const std::string& name,
 /// user's other choices may leave unread (MUMPS for an iterative solve) is no mistake.
 bool is_default_option(const std::string& option);
 
-/// Make a direct solve (MUMPS LU) the default of the linear solver with options `prefix`:
-/// robust for the problem sizes of the scenes; `-<prefix>ksp_type gmres -<prefix>pc_type gamg`
-/// etc. select an iterative one.
-void default_to_direct_solver(const std::string& prefix);
+/// The defaults of the linear solver with options `prefix`, from the named option set
+/// `-<prefix>linear_solver` (each option of a set is a default: any one can be overridden):
+/// - `direct` (the default): MUMPS LU. Robust, and fastest up to a few 10^4 unknowns; its time
+///   and memory grow far faster than the number of unknowns N.
+/// - `amg`: GMRES preconditioned by PETSc's smoothed-aggregation AMG (GAMG) with the rigid-body
+///   near-nullspace (NonlinearProblem::create_matrix): for displacement-only laws (compressible
+///   solids, the gel).
+/// - `fieldsplit`: for mixed displacement-pressure spaces (P2-P1, Q2-Q1, Q1-P0): FGMRES with a
+///   block (Schur complement) preconditioner, GAMG with the rigid-body modes on the displacement
+///   block and Jacobi on PETSc's selfp approximation of the pressure Schur complement
+///   (A_pp - A_pu diag(A_uu)^-1 A_up); `-<prefix>pc_fieldsplit_schur_precondition user` uses
+///   the pressure mass matrix over G instead, where the problem has one. The fields `u` and
+///   `p` (options -<prefix>fieldsplit_u_... and _p_...) are defined by
+///   define_displacement_pressure_fields (mixed.h).
+/// The Krylov sets solve to -<prefix>ksp_rtol 1e-10, which leaves Newton's quadratic
+/// convergence and the direct solve's answer to the Newton tolerance; -<prefix>snes_ksp_ew
+/// (Eisenstat-Walker) adapts it instead. Throws InputError for an unknown set.
+void set_linear_solver_defaults(const std::string& prefix);
 
-/// A KSP reading options with `prefix`, a direct solve by default (default_to_direct_solver).
+/// A KSP reading options with `prefix`, defaults from set_linear_solver_defaults.
 KSP create_linear_solver(MPI_Comm comm, const std::string& prefix);
 
 /// Value of a real option `-<prefix><name>`, or `fallback` when unset.

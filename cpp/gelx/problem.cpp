@@ -95,14 +95,12 @@ MatNullSpace rigid_body_modes(const dolfinx::fem::FunctionSpace& V, Vec like)
   const std::vector<double> X = V.tabulate_dof_coordinates(false);
   std::vector<dolfinx::la::Vector<double>> basis(6, dolfinx::la::Vector<double>(map, 3));
   for (std::int32_t n = 0; n < num_nodes; ++n)
-  {
-    const double x = X[3 * n], y = X[3 * n + 1], z = X[3 * n + 2];
-    const double modes[6][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1},
-                                {-y, x, 0}, {z, 0, -x}, {0, -z, y}};
-    for (int m = 0; m < 6; ++m)
-      for (int i = 0; i < 3; ++i)
-        basis[m].mutable_array()[3 * n + i] = modes[m][i];
-  }
+    for (int i = 0; i < 3; ++i)
+    {
+      const std::array<double, 6> modes = rigid_body_modes_at(&X[3 * n], i);
+      for (int m = 0; m < 6; ++m)
+        basis[m].mutable_array()[3 * n + i] = modes[m];
+    }
   dolfinx::la::orthonormalize(std::span(basis));
   std::vector<Vec> vecs(6);
   for (int m = 0; m < 6; ++m)

@@ -69,9 +69,21 @@ public:
   std::shared_ptr<dolfinx::fem::Function<double>> u() const { return _u; }
   const BCs& bcs() const { return _bcs; }
 
+  /// For a mixed displacement-pressure problem: the bilinear form -1/G int p q dX on its space
+  /// (forms/_mixed.py, pressure_mass), whose pressure block preconditions the Schur complement
+  /// of the fieldsplit linear solver (define_displacement_pressure_fields, mixed.h).
+  void set_pressure_mass(std::shared_ptr<const dolfinx::fem::Form<double>> form)
+  {
+    _pressure_mass = std::move(form);
+  }
+  std::shared_ptr<const dolfinx::fem::Form<double>> pressure_mass() const
+  {
+    return _pressure_mass;
+  }
+
 private:
   std::shared_ptr<dolfinx::fem::Function<double>> _u;
-  std::shared_ptr<const dolfinx::fem::Form<double>> _R, _J;
+  std::shared_ptr<const dolfinx::fem::Form<double>> _R, _J, _pressure_mass;
   BCs _bcs;
   std::shared_ptr<const dolfinx::fem::Expression<double>> _admissibility;
   bool _lifting; ///< -dirichlet_lifting (see the class comment)
@@ -98,4 +110,14 @@ double assemble_global_scalar(const dolfinx::fem::Form<double>& M);
 
 Resultant boundary_resultant(const NonlinearProblem& problem,
                              const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags, int tag);
+
+/// Component `c` of the six rigid-body modes of 3-D space (three translations, three
+/// rotations) at the point X: the near-nullspace of elasticity that algebraic multigrid needs.
+inline std::array<double, 6> rigid_body_modes_at(const double* X, int c)
+{
+  const double x = X[0], y = X[1], z = X[2];
+  const double modes[6][3]
+      = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-y, x, 0}, {z, 0, -x}, {0, -z, y}};
+  return {modes[0][c], modes[1][c], modes[2][c], modes[3][c], modes[4][c], modes[5][c]};
+}
 } // namespace gelx

@@ -4,7 +4,7 @@
 //   ./gelx run block
 //   ./gelx run block --stretch 2 --twist 180 --h 0.15 --degree 1
 //   mpirun -np 2 build/demos/block/gelx-block --output results/block-np2
-//   ./gelx run block -newton_ksp_type gmres -newton_pc_type gamg    (iterative linear solver)
+//   ./gelx run block -newton_linear_solver amg    (iterative linear solver: GMRES + GAMG)
 //
 // A W x W x H block of the compressible neo-Hookean solid of thesis Eq. 3.1,
 //   U = G/2 (J^(-2/3) tr C - 3) + K/2 (J - 1)^2,
@@ -106,6 +106,9 @@ int main(int argc, char* argv[])
     gelx::NonlinearProblem problem(u, forms.form(kernels.residual, {V}),
                                    forms.form(kernels.tangent, {V, V}), bcs.bcs(),
                                    forms.expression(kernels.det_F));
+    // Its Newton solver, bound now so that a bad solver option ends the run before any output
+    gelx::NewtonSolver newton(run.comm());
+    newton.bind(problem);
 
     // 5. Output: displacement at the nodes, stress and energy density per cell
     gelx::ResultsWriter& results = run.results(geo.mesh);
@@ -118,7 +121,6 @@ int main(int argc, char* argv[])
                    {"num_cells", geo.mesh->topology().index_map(3)->size_global()}};
 
     // 6. Follow the load path; each completed step updates the quantities of interest
-    gelx::NewtonSolver newton(run.comm());
     gelx::PathState path = run.start_path(problem);
     gelx::LoadStepper(problem, newton, stepping, [&](double t) { bcs.update(t); })
         .run(path,

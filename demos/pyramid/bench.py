@@ -107,3 +107,18 @@ for ax, key, label in zip(axes, ("slope", "width"), ("slope of l_c/L against d/H
 fig.tight_layout()
 fig.savefig(out / "work_precision.png", dpi=120)
 print(f"wrote {out / 'work_precision.csv'} and {out / 'work_precision.png'}")
+
+# Against what a user would write instead: a plain dolfinx model of the pyramid (P2-P1
+# tetrahedra, 11,452 unknowns, ../shared/NOTES.md) stalls at d/H = 0.34. gelx's time from
+# start-up to d/H = 0.34 and to 0.8 at 1 rank, on the mesh of about that size (3 cells) and on
+# the default mesh (4 cells): the first step's `elapsed` at or past each d/H in steps.csv
+print("\n| cells | unknowns | ranks | time to d/H = 0.34 (s) | time to d/H = 0.8 (s) |")
+print("| --- | --- | --- | --- | --- |")
+for cells in ([2] if quick else [3, 4]):
+    folder = out / f"to_0.8_cells{cells}_np1"
+    s = run_scene(build, "pyramid", folder, 1,
+                  ["--cells", str(cells), "--d_max", "0.8", "--extrapolate", "false"], reuse)
+    steps = list(csv.DictReader(open(folder / "steps.csv")))
+    reached = [next(float(r["elapsed"]) for r in steps if float(r["d_over_H"]) >= d - 1e-12)
+               for d in (0.34, 0.8)]
+    print(f"| {cells} | {s['num_unknowns']} | 1 | {reached[0]:.1f} | {reached[1]:.1f} |")

@@ -211,10 +211,12 @@ int main(int argc, char* argv[])
                                {"active_nodes", c.active},
                                {"max_penetration", c.penetration},
                                {"newton_iterations", step.newton.iterations},
+                               {"linear_iterations", step.newton.linear_iterations},
                                {"newton_residual", step.newton.residual},
                                {"newton_residual0", step.newton.residual0},
                                {"cutbacks", step.cutbacks},
-                               {"wall_time", step.wall_time}});
+                               {"wall_time", step.wall_time},
+                               {"elapsed", run.elapsed()}});
           run.summary.update({{"final_d_over_H", d},
                               {"final_force", c.force},
                               {"final_contact_width_over_L", c.width / g.L},

@@ -25,6 +25,7 @@ struct LawForms
   ufcx_form *residual, *tangent;
   ufcx_expression *stress, *det_F;
   ufcx_form* contact_area;
+  ufcx_form* pressure_mass; ///< preconditions the fieldsplit solver's Schur complement
 };
 
 LawForms law_forms(const std::string& law, int order)
@@ -33,27 +34,30 @@ LawForms law_forms(const std::string& law, int order)
       {{"nh", 2},
        {functionspace_form_mixed_hex_residual_nh, form_mixed_hex_residual_nh,
         form_mixed_hex_tangent_nh, expression_mixed_hex_stress_nh, expression_mixed_hex_det_F,
-        form_contact_hex_contact_area}},
+        form_contact_hex_contact_area, form_mixed_hex_pressure_mass}},
       {{"mr", 2},
        {functionspace_form_mixed_hex_residual_mr, form_mixed_hex_residual_mr,
         form_mixed_hex_tangent_mr, expression_mixed_hex_stress_mr, expression_mixed_hex_det_F,
-        form_contact_hex_contact_area}},
+        form_contact_hex_contact_area, form_mixed_hex_pressure_mass}},
       {{"le", 2},
        {functionspace_form_mixed_hex_residual_le, form_mixed_hex_residual_le,
         form_mixed_hex_tangent_le, expression_mixed_hex_stress_le, expression_mixed_hex_det_F,
-        form_contact_hex_contact_area}},
+        form_contact_hex_contact_area, form_mixed_hex_pressure_mass}},
       {{"nh", 1},
        {functionspace_form_mixed_hex_q1_residual_nh, form_mixed_hex_q1_residual_nh,
         form_mixed_hex_q1_tangent_nh, expression_mixed_hex_q1_stress_nh,
-        expression_mixed_hex_q1_det_F, form_contact_hex_q1_contact_area}},
+        expression_mixed_hex_q1_det_F, form_contact_hex_q1_contact_area,
+        form_mixed_hex_q1_pressure_mass}},
       {{"mr", 1},
        {functionspace_form_mixed_hex_q1_residual_mr, form_mixed_hex_q1_residual_mr,
         form_mixed_hex_q1_tangent_mr, expression_mixed_hex_q1_stress_mr,
-        expression_mixed_hex_q1_det_F, form_contact_hex_q1_contact_area}},
+        expression_mixed_hex_q1_det_F, form_contact_hex_q1_contact_area,
+        form_mixed_hex_q1_pressure_mass}},
       {{"le", 1},
        {functionspace_form_mixed_hex_q1_residual_le, form_mixed_hex_q1_residual_le,
         form_mixed_hex_q1_tangent_le, expression_mixed_hex_q1_stress_le,
-        expression_mixed_hex_q1_det_F, form_contact_hex_q1_contact_area}}};
+        expression_mixed_hex_q1_det_F, form_contact_hex_q1_contact_area,
+        form_mixed_hex_q1_pressure_mass}}};
   const auto it = table.find({law, order});
   if (it == table.end())
     throw InputError("no pyramid form for law '" + law + "' at order " + std::to_string(order)
@@ -113,6 +117,7 @@ PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry,
                        *kernels.det_F, {{"w", _w}}, {}, _mesh.mesh));
   _problem = std::make_unique<NonlinearProblem>(
       _w, form(kernels.residual, {W}), form(kernels.tangent, {W, W}), _bcs->bcs(), det_F);
+  _problem->set_pressure_mass(form(kernels.pressure_mass, {W, W}));
   // The eighth's diagonal plane x = y is a mirror plane too, but not axis-aligned: slip on it
   // as a multipoint constraint (its slaves are x or y components, so the contact's z stays
   // free)

@@ -1,4 +1,5 @@
 #include "dynamics.h"
+#include "mixed.h"
 #include "parameters.h"
 #include "petsc_utils.h"
 #include "problem.h"
@@ -190,6 +191,11 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSSetApplicationContext(_ts, this));
   GELX_PETSC(TSSetPostStep(_ts, post_step));
   GELX_PETSC(TSSetFromOptions(_ts));
+  SNES snes;
+  GELX_PETSC(TSGetSNES(_ts, &snes));
+  KSP ksp;
+  GELX_PETSC(SNESGetKSP(snes, &ksp));
+  define_fields_if_split(ksp, system);
   // A step TS cannot take (more than ts_max_reject rejections) ends TSSolve with a negative
   // converged reason, which run() reports as a ConvergenceError, instead of a PETSc error
   // whose traceback each rank prints (measured: the bistrip's pre-compressed strip)

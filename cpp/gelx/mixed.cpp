@@ -191,4 +191,14 @@ void define_displacement_pressure_fields(PC pc, NonlinearSystem& system)
   ISDestroy(&is_p);
 }
 
+void define_fields_if_split(KSP ksp, NonlinearSystem& system)
+{
+  PC pc;
+  GELX_PETSC(KSPGetPC(ksp, &pc));
+  PetscBool split;
+  GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCFIELDSPLIT, &split));
+  if (split)
+    define_displacement_pressure_fields(pc, system);
+}
+
 } // namespace gelx

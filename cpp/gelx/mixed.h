@@ -42,4 +42,9 @@ reaction_force(const NonlinearProblem& problem, const dolfinx::fem::FunctionSpac
 /// an arc-length load factor). Collective.
 void define_displacement_pressure_fields(PC pc, NonlinearSystem& system);
 
+/// After a solver of `system` read its options: if the preconditioner of `ksp` is PCFIELDSPLIT,
+/// define its fields (define_displacement_pressure_fields), which only the system knows.
+/// NewtonSolver and DampedDynamics call it. Collective.
+void define_fields_if_split(KSP ksp, NonlinearSystem& system);
+
 } // namespace gelx

@@ -241,15 +241,9 @@ void NewtonSolver::set_up(NonlinearSystem& system)
   GELX_PETSC(SNESSetUpdate(_snes, commit_iterate));
   system.configure(_snes);
   GELX_PETSC(SNESSetFromOptions(_snes));
-  // A block preconditioner needs the fields, which only the system knows
   KSP ksp;
   GELX_PETSC(SNESGetKSP(_snes, &ksp));
-  PC pc;
-  GELX_PETSC(KSPGetPC(ksp, &pc));
-  PetscBool split;
-  GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCFIELDSPLIT, &split));
-  if (split)
-    define_displacement_pressure_fields(pc, system);
+  define_fields_if_split(ksp, system);
   // After the type is set: creating a VI type installs its own convergence test
   GELX_PETSC(SNESSetConvergenceTest(_snes, converged, context, nullptr));
   PetscBool bounded;

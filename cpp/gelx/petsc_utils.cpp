@@ -1,7 +1,10 @@
 #include "petsc_utils.h"
 #include "parameters.h"
 
+#include <map>
 #include <set>
+#include <utility>
+#include <vector>
 
 namespace gelx
 {
@@ -43,43 +46,36 @@ bool is_default_option(const std::string& option) { return defaults_set().count(
 
 void set_linear_solver_defaults(const std::string& prefix)
 {
-  const std::string set = string_option(prefix, "linear_solver", "direct");
-  // the Krylov sets: a restart long enough for the few hundred iterations of a hard tangent,
-  // and a bound that makes a preconditioner that fails show as a failed step, not an hour
-  auto krylov = [&](const char* type)
-  {
-    set_default_option(prefix, "ksp_type", type);
-    set_default_option(prefix, "ksp_gmres_restart", "200");
-    set_default_option(prefix, "ksp_rtol", "1e-10");
-    set_default_option(prefix, "ksp_max_it", "2000");
-  };
-  if (set == "direct")
-  {
-    set_default_option(prefix, "ksp_type", "preonly");
-    set_default_option(prefix, "pc_type", "lu");
-    set_default_option(prefix, "pc_factor_mat_solver_type", "mumps");
-  }
-  else if (set == "amg")
-  {
-    krylov("gmres");
-    set_default_option(prefix, "pc_type", "gamg");
-  }
-  else if (set == "fieldsplit")
-  {
-    // FGMRES: the Schur complement's inner solves make the preconditioner vary slightly
-    krylov("fgmres");
-    set_default_option(prefix, "pc_type", "fieldsplit");
-    set_default_option(prefix, "pc_fieldsplit_type", "schur");
-    set_default_option(prefix, "pc_fieldsplit_schur_fact_type", "full");
-    set_default_option(prefix, "pc_fieldsplit_schur_precondition", "selfp");
-    set_default_option(prefix, "fieldsplit_u_ksp_type", "preonly");
-    set_default_option(prefix, "fieldsplit_u_pc_type", "gamg");
-    set_default_option(prefix, "fieldsplit_p_ksp_type", "preonly");
-    set_default_option(prefix, "fieldsplit_p_pc_type", "jacobi");
-  }
-  else
-    throw InputError("-" + prefix + "linear_solver " + set
+  // The Krylov sets: a restart long enough for the few hundred iterations of a hard tangent,
+  // and a bound that makes a preconditioner that fails show as a failed step, not an hour.
+  // FGMRES for fieldsplit: the Schur complement's inner solves make the preconditioner vary.
+  using Options = std::vector<std::pair<std::string, std::string>>;
+  const Options krylov = {{"ksp_gmres_restart", "200"}, {"ksp_rtol", "1e-10"},
+                          {"ksp_max_it", "2000"}};
+  const std::map<std::string, Options> sets = {
+      {"direct",
+       {{"ksp_type", "preonly"}, {"pc_type", "lu"}, {"pc_factor_mat_solver_type", "mumps"}}},
+      {"amg", {{"ksp_type", "gmres"}, {"pc_type", "gamg"}}},
+      {"fieldsplit",
+       {{"ksp_type", "fgmres"},
+        {"pc_type", "fieldsplit"},
+        {"pc_fieldsplit_type", "schur"},
+        {"pc_fieldsplit_schur_fact_type", "full"},
+        {"pc_fieldsplit_schur_precondition", "selfp"},
+        {"fieldsplit_u_ksp_type", "preonly"},
+        {"fieldsplit_u_pc_type", "gamg"},
+        {"fieldsplit_p_ksp_type", "preonly"},
+        {"fieldsplit_p_pc_type", "jacobi"}}}};
+  const std::string name = string_option(prefix, "linear_solver", "direct");
+  const auto set = sets.find(name);
+  if (set == sets.end())
+    throw InputError("-" + prefix + "linear_solver " + name
                      + ": unknown option set (direct, amg, fieldsplit)");
+  for (const auto& [option, value] : set->second)
+    set_default_option(prefix, option, value);
+  if (name != "direct")
+    for (const auto& [option, value] : krylov)
+      set_default_option(prefix, option, value);
 }
 
 KSP create_linear_solver(MPI_Comm comm, const std::string& prefix)

@@ -1,4 +1,5 @@
 #include "contact.h"
+#include "collectives.h"
 #include "parameters.h"
 #include "petsc_utils.h"
 
@@ -300,6 +301,53 @@ std::vector<RigidPlaneContact::Node> RigidPlaneContact::nodes() const
     result.push_back(n);
   }
   return result;
+}
+
+std::vector<RigidPlaneContact::NodeOnLine> RigidPlaneContact::nodes_on_line(
+    const std::function<std::optional<std::pair<double, double>>(const Node&)>& locate) const
+{
+  std::vector<double> local; // (place, position, level set) per node
+  for (const Node& n : nodes())
+    if (const auto at = locate(n))
+      local.insert(local.end(), {at->first, at->second, n.level_set});
+  MPI_Comm comm = _inner.problem().u()->function_space()->mesh()->comm();
+  const std::vector<double> all = all_gather(comm, local);
+  std::vector<NodeOnLine> line;
+  for (std::size_t i = 0; i < all.size(); i += 3)
+    line.push_back({all[i], all[i + 1], all[i + 2]});
+  std::sort(line.begin(), line.end(),
+            [](const NodeOnLine& a, const NodeOnLine& b) { return a.place < b.place; });
+  return line;
+}
+
+double patch_edge_by_level_set(const std::vector<RigidPlaneContact::NodeOnLine>& line)
+{
+  double edge = 0;
+  for (std::size_t k = 0; k < line.size() && line[k].level_set > 0; ++k)
+  {
+    edge = line[k].position;
+    if (k + 1 < line.size() && line[k + 1].level_set <= 0)
+    {
+      const double s = line[k].level_set / (line[k].level_set - line[k + 1].level_set);
+      edge += s * (line[k + 1].position - line[k].position);
+    }
+  }
+  return edge;
+}
+
+double patch_edge_by_gap_law(const std::vector<RigidPlaneContact::NodeOnLine>& line)
+{
+  std::size_t k = 0; // the first free node
+  while (k < line.size() && line[k].level_set > 0)
+    ++k;
+  const double g1 = k < line.size() ? -line[k].level_set : 0;
+  const double g2 = k + 1 < line.size() ? -line[k + 1].level_set : 0;
+  if (k == 0 || !(g1 > 0 && g2 > g1)) // no patch, or no opening gap to fit the law to
+    return patch_edge_by_level_set(line);
+  const double s1 = line[k].position, s2 = line[k + 1].position;
+  const double r = std::pow(g1 / g2, 2.0 / 3.0);
+  const auto [lo, hi] = std::minmax(line[k - 1].position, s1);
+  return std::clamp((s1 - r * s2) / (1 - r), lo, hi);
 }
 
 } // namespace gelx

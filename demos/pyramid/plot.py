@@ -22,11 +22,15 @@ f = np.array([float(r["force"]) for r in rows])
 G = s["parameters"]["G"]
 
 fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
-left.plot(d, lc, "o", ms=4, label="gelx")
+lc_gap_law = np.array([float(r["contact_width_over_L_gap_law"]) for r in rows])
+left.plot(d, lc, "o", ms=4, label="gelx, corner by the level set")
 limit = s.get("slope_lc_vs_d_extrapolated")
 limit_text = (f" (mesh limit {limit:.3f})" if limit is not None and np.isfinite(limit) else "")
 left.plot(d, s["slope_lc_vs_d"] * d + s["intercept_lc_vs_d"], "k-",
           label=f"fit: slope {s['slope_lc_vs_d']:.3f}{limit_text}, R² {s['r2_lc_vs_d']:.4f}")
+left.plot(d, lc_gap_law, "s", ms=4, mfc="none", label="gelx, corner by the gap's 3/2 law")
+left.plot(d, s["slope_lc_vs_d_gap_law"] * d + s["intercept_lc_vs_d_gap_law"], "b-",
+          label=f"fit: slope {s['slope_lc_vs_d_gap_law']:.3f}")
 left.plot(d, 0.86 * d, "r--", label="thesis fit, slope 0.86")
 left.plot(d, d, ":", color="gray", label="truncated pyramid, slope 1")
 left.set_xlabel("d / H")

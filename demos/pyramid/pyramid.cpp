@@ -151,7 +151,6 @@ std::shared_ptr<fem::Function<double>> PressedPyramid::displacement()
 
 ContactMeasures PressedPyramid::measure()
 {
-  MPI_Comm comm = _mesh.mesh->comm();
   const ContactState state = _contact->state();
   ContactMeasures m;
   m.force = _images.size() * state.force;
@@ -162,29 +161,17 @@ ContactMeasures PressedPyramid::measure()
   m.area = _images.size() * assemble_global_scalar(*_area);
 
   // The width: the patch's corners lie on the pyramid's edges x = y (in the eighth: its
-  // diagonal plane), so l_c = 2 x_corner, where the contact level set changes sign along the
-  // edge (linear between its nodes)
-  std::vector<double> edge; // (distance from the apex, level set, current x) per node
+  // diagonal plane), so l_c = 2 x_corner, the nodes ordered by their distance from the apex
   const double tol = 1e-8 * _g.L;
-  for (const auto& n : _contact->nodes())
-    if (std::abs(n.X[0] - n.X[1]) < tol)
-      edge.insert(edge.end(), {_g.t + _H - n.X[2], n.level_set, n.x[0]});
-  edge = all_gather(comm, edge);
-  std::vector<std::array<double, 3>> nodes;
-  for (std::size_t i = 0; i < edge.size(); i += 3)
-    nodes.push_back({edge[i], edge[i + 1], edge[i + 2]});
-  std::sort(nodes.begin(), nodes.end());
-  double corner = 0;
-  for (std::size_t k = 0; k < nodes.size() && nodes[k][1] > 0; ++k)
-  {
-    corner = nodes[k][2];
-    if (k + 1 < nodes.size() && nodes[k + 1][1] <= 0)
-    {
-      const double s = nodes[k][1] / (nodes[k][1] - nodes[k + 1][1]);
-      corner += s * (nodes[k + 1][2] - nodes[k][2]);
-    }
-  }
-  m.width = 2 * corner;
+  const auto edge = _contact->nodes_on_line(
+      [&](const RigidPlaneContact::Node& n) -> std::optional<std::pair<double, double>>
+      {
+        if (std::abs(n.X[0] - n.X[1]) < tol)
+          return std::make_pair(_g.t + _H - n.X[2], n.x[0]);
+        return std::nullopt;
+      });
+  m.width = 2 * patch_edge_by_level_set(edge);
+  m.width_gap_law = 2 * patch_edge_by_gap_law(edge);
   return m;
 }
 

@@ -27,6 +27,8 @@ struct ContactMeasures
 {
   double force = 0;        ///< compression force f (G times um^2: uN for G in MPa)
   double width = 0;        ///< contact width l_c: the patch's extent along a base edge
+  /// l_c with the corner located by the gap's 3/2 law beyond it (converges faster)
+  double width_gap_law = 0;
   double area = 0;         ///< contact area A_c
   std::int64_t active = 0; ///< nodes in contact (in the modelled part)
   double penetration = 0;  ///< largest node distance behind the substrate

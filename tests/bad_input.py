@@ -59,6 +59,11 @@ CASES = {
         ("B_below_A", ["--A", "2", "--B", "1.5"], "B must exceed the inner radius A"),
         ("K_zero", ["--K", "0"], "'K' = 0: must be positive"),
         ("K_negative", ["--K", "-5"], "'K' = -5: must be positive"),
+        ("inertia_without_factorisation", ["-arclength_linear_solver", "amg"],
+         "stability inertia reads the inertia of a factorisation"),
+        ("fieldsplit_not_mixed", ["-arclength_linear_solver", "fieldsplit",
+                                  "-arclength_stability", "eigenvalue"],
+         "needs a mixed displacement-pressure space"),
     ],
     "buckling": [
         ("ty_equal_tx", ["--ty", "1"], "the depth ty must exceed the width tx"),

@@ -1,4 +1,5 @@
 #include "arclength.h"
+#include "mixed.h"
 #include "parameters.h"
 #include "petsc_utils.h"
 #include "problem.h"
@@ -95,7 +96,15 @@ Stability stability_test(const std::string& prefix)
 const std::string& with_stability_defaults(const std::string& prefix)
 {
   if (stability_test(prefix) == Stability::inertia)
+  {
+    // An iterative set would be overridden by the factorisation without a word
+    const std::string solver = string_option(prefix, "linear_solver", "direct");
+    if (solver != "direct")
+      throw InputError("-" + prefix + "stability inertia reads the inertia of a factorisation: "
+                       "it needs -" + prefix + "linear_solver direct, not " + solver
+                       + " (or -" + prefix + "stability eigenvalue)");
     default_to_symmetric_factorisation(prefix);
+  }
   return prefix;
 }
 } // namespace
@@ -113,6 +122,8 @@ ArcLengthSystem::ArcLengthSystem(NonlinearSystem& inner, std::function<void(doub
   join(inner.unknowns(), 0.0, _x);
   _K = inner.create_matrix();
   _ksp = create_linear_solver(_comm, prefix);
+  // K is the wrapped system's tangent, so a field split of it has that system's fields
+  define_fields_if_split(_ksp, inner);
   for (Vec* v : {&_g, &_x0, &_f, &_b, &_work, &_work2})
     *v = inner.create_vector();
 }

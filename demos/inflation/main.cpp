@@ -89,6 +89,18 @@ int main(int argc, char* argv[])
 
     // 2. The shell octant: mesh, forms, symmetry conditions
     gelx::scenes::InflatedShell shell(run.comm(), mesh, p);
+    // The continuation, set up before any output (a bad solver option stops the run before its
+    // folder exists). The arc length is measured in the 2-norm of the dof vector (~1.5e4
+    // entries at h = 0.125): steps from 0.5 to 6 resolve the path with 2-5 corrector
+    // iterations each (override with -arclength_ds ...)
+    gelx::set_default_option("arclength_", "ds", "0.5");
+    gelx::set_default_option("arclength_", "ds_max", "6");
+    // Every point's stability from the inertia of the tangent the next predictor factorises
+    // anyway: past the maximum one eigenvalue is negative (the limit point's); a thin sphere
+    // then loses sphericity where another crosses zero, a bifurcation the path stops at
+    gelx::set_default_option("arclength_", "stability", "inertia");
+    gelx::ArcLength continuation(run.comm(), shell.system(),
+                                 [&](double l) { shell.set_load_factor(l); });
     gelx::ResultsWriter& results = run.results(shell.mesh().mesh);
     run.summary = {{"num_dofs",
                     shell.displacement()->function_space()->dofmap()->index_map->size_global()
@@ -110,20 +122,10 @@ int main(int argc, char* argv[])
       shell.set_load_factor(0.0);
     }
 
-    // 4. Follow the path past the maximum, writing every point. The arc length is measured in
-    //    the 2-norm of the dof vector (~1.5e4 entries at h = 0.125): steps from 0.5 to 6
-    //    resolve the path with 2-5 corrector iterations each (override with -arclength_ds ...)
-    gelx::set_default_option("arclength_", "ds", "0.5");
-    gelx::set_default_option("arclength_", "ds_max", "6");
-    // Every point's stability from the inertia of the tangent the next predictor factorises
-    // anyway: past the maximum one eigenvalue is negative (the limit point's); a thin sphere
-    // then loses sphericity where another crosses zero, a bifurcation the path stops at
-    gelx::set_default_option("arclength_", "stability", "inertia");
+    // 4. Follow the path past the maximum, writing every point
     gelx::FieldSet fields;
     fields.add("displacement", shell.displacement());
     double departure = 0; // the last point's asphericity (the observer's, for the stop test)
-    gelx::ArcLength continuation(run.comm(), shell.system(),
-                                 [&](double l) { shell.set_load_factor(l); });
     gelx::PathState path = run.start_path(shell.system());
     continuation.run(
         path, c.max_steps,

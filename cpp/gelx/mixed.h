@@ -44,7 +44,7 @@ void define_displacement_pressure_fields(PC pc, NonlinearSystem& system);
 
 /// After a solver of `system` read its options: if the preconditioner of `ksp` is PCFIELDSPLIT,
 /// define its fields (define_displacement_pressure_fields), which only the system knows.
-/// NewtonSolver and DampedDynamics call it. Collective.
+/// NewtonSolver, DampedDynamics and ArcLengthSystem (on its K) call it. Collective.
 void define_fields_if_split(KSP ksp, NonlinearSystem& system);
 
 } // namespace gelx

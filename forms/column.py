@@ -39,7 +39,11 @@ mode_even_part = mode[0] * dx
 mode_even_scale = abs(mode[0]) * dx
 
 det_F = ufl.det(F)  # admissibility: det F > 0
+stress = materials.cauchy_stress(psi, F)
 
 forms = [residual, tangent, potential_energy, mass, strain_energy, mode_odd_part, mode_odd_scale,
          mode_even_part, mode_even_scale]
-expressions = [(det_F, materials.quadrature_points(cell, materials.quadrature_degree(degree)))]
+# The admissibility check at the quadrature points; stress and energy density per cell (output)
+centroid = materials.centroid(cell)
+expressions = [(det_F, materials.quadrature_points(cell, materials.quadrature_degree(degree))),
+               (stress, centroid), (psi, centroid)]

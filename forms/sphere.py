@@ -34,6 +34,10 @@ tangent = ufl.derivative(residual, u, ufl.TrialFunction(V))
 mass = rho * ufl.inner(ufl.TrialFunction(V), v) * dx
 strain_energy = psi * dx
 det_F = ufl.det(F)  # admissibility: det F > 0
+stress = materials.cauchy_stress(psi, F)
 
 forms = [residual, tangent, mass, strain_energy]
-expressions = [(det_F, materials.quadrature_points(cell, q))]
+# The admissibility check at the quadrature points; stress and energy density per cell (output)
+centroid = materials.centroid(cell)
+expressions = [(det_F, materials.quadrature_points(cell, q)), (stress, centroid),
+               (psi, centroid)]

@@ -15,6 +15,12 @@ invariants.
 - the STL surface of the last step: the deformed pyramid's top lies on the substrate,
   z = t + H - d (to float32 round-off: STL stores single precision), and every triangle faces
   up, out of the body (the lateral faces' outward normals have n_z > 0 and keep it in contact).
+- the contact fields of fields.xdmf at the last step, against the displacement field: the
+  nodes with contact_status 1 lie on the substrate (x_z = X_z + u_z to 1e-9 H) with zero gap
+  and compressive force (with Q1, whose candidates are all vertices, as many as steps.csv's
+  active_nodes); every other candidate's contact_gap is the distance z_substrate - x_z to the
+  substrate, to 1e-9 H (the gap is computed by the contact code, x from the output
+  displacement).
 
 usage: pyramid_regression.py OUTPUT_DIR
 """
@@ -27,6 +33,9 @@ import sys
 import numpy as np
 
 from checks import Checks
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import FieldSeries  # noqa: E402  (demos/fields.py)
 
 out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())
@@ -59,4 +68,29 @@ checks.relative("STL: highest point against the substrate z = t + H - d", vertic
                 substrate, 1e-6)
 checks.require(f"STL: triangles facing down: {(normals[:, 2] <= 0).sum()}",
                (normals[:, 2] > 0).all())
+
+series = FieldSeries(out)
+X, _ = series.mesh(-1)
+z = X[:, 2] + series.field("displacement", -1)[:, 2]
+status, gap, force = (series.field(f"contact_{name}", -1).ravel()
+                      for name in ("status", "gap", "force"))
+H = p["L"] / math.sqrt(2)
+touching = status > 0.5
+last_row = list(csv.DictReader(open(out / "steps.csv")))[-1]
+# 1e-12: the output interpolates the vertex values into the output space, exact to round-off
+checks.require(f"contact_status is 0 or 1 (to 1e-12) at every node, 1 at {touching.sum()} nodes",
+               np.all(np.minimum(np.abs(status), np.abs(status - 1)) < 1e-12)
+               and touching.sum() > 0)
+if p["order"] == 1:
+    checks.require(f"nodes in contact: {touching.sum()}, steps.csv says {last_row['active_nodes']}",
+                   touching.sum() == int(last_row["active_nodes"]))
+checks.absolute("largest |x_z - z_substrate| / H over the nodes in contact",
+                np.abs(z[touching] - substrate).max() / H, 0, 1e-9)
+checks.absolute("largest |contact_gap| / H over the nodes in contact", np.abs(gap[touching]).max() / H,
+                0, 1e-9)
+checks.require(f"contact_force >= 0 in contact (smallest {force[touching].min():.3g})",
+               force[touching].min() >= 0)
+free = ~touching & (np.abs(gap) > 1e-12 * H)
+checks.absolute(f"largest |contact_gap - (z_substrate - x_z)| / H over {free.sum()} free candidates",
+                np.abs(gap[free] - (substrate - z[free])).max() / H, 0, 1e-9)
 checks.finish()

@@ -1,5 +1,6 @@
 #include "contact.h"
 #include "collectives.h"
+#include "output.h"
 #include "parameters.h"
 #include "petsc_utils.h"
 
@@ -78,6 +79,28 @@ RigidPlaneContact::RigidPlaneContact(NonlinearSystem& inner,
     throw std::runtime_error(error.empty() ? "contact: constrained candidates on another rank"
                                            : error);
   _lambda.assign(_dof.size(), 0.0);
+
+  // The state fields hold vertex values: a Lagrange element numbers its vertex nodes first in
+  // each cell, so a cell's first dofs in V0 and in P1 are the same vertices
+  auto P1 = lagrange_space(V0->mesh(), 1, 1);
+  const auto V0_nodes = V0->dofmap()->index_map;
+  std::vector<std::int32_t> vertex_of_node(V0_nodes->size_local() + V0_nodes->num_ghosts(), -1);
+  const auto cells = V0->mesh()->topology().index_map(fdim + 1);
+  for (std::int32_t c = 0; c < cells->size_local() + cells->num_ghosts(); ++c)
+  {
+    const auto vertices = P1->dofmap()->cell_dofs(c);
+    const auto nodes = V0->dofmap()->cell_dofs(c);
+    for (std::size_t k = 0; k < vertices.size(); ++k)
+      vertex_of_node[nodes[k]] = vertices[k];
+  }
+  for (std::int32_t node : _node)
+    _vertex.push_back(vertex_of_node[node]);
+  _status = std::make_shared<dolfinx::fem::Function<double>>(P1);
+  _gap = std::make_shared<dolfinx::fem::Function<double>>(P1);
+  _force = std::make_shared<dolfinx::fem::Function<double>>(P1);
+  _status->name = "contact_status";
+  _gap->name = "contact_gap";
+  _force->name = "contact_force";
   const std::vector<std::int32_t> surface = facet_tags.find(tag);
   _surface = std::make_shared<dolfinx::mesh::MeshTags<std::int32_t>>(
       V0->mesh(), fdim, std::vector<std::int32_t>(surface),
@@ -261,7 +284,33 @@ ContactState RigidPlaneContact::state()
   MPI_Comm comm = _inner.problem().u()->function_space()->mesh()->comm();
   MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, comm);
   MPI_Allreduce(MPI_IN_PLACE, &penetration, 1, MPI_DOUBLE, MPI_MAX, comm);
+  update_state_fields();
   return {sums[0], static_cast<std::int64_t>(sums[1]), penetration};
+}
+
+void RigidPlaneContact::update_state_fields()
+{
+  for (const auto& f : {_status, _gap, _force})
+    std::ranges::fill(f->x()->mutable_array(), 0.0);
+  auto status = _status->x()->mutable_array(), gap = _gap->x()->mutable_array(),
+       force = _force->x()->mutable_array();
+  const std::vector<Node> current = nodes();
+  for (std::size_t i = 0; i < current.size(); ++i)
+  {
+    if (const std::int32_t v = _vertex[i]; v >= 0)
+    {
+      status[v] = current[i].active;
+      gap[v] = _side * (current[i].x[_axis] - _position);
+      force[v] = current[i].force;
+    }
+  }
+  // A candidate's vertex may be a ghost of P1 on the rank that owns the node: add the values to
+  // the owner (every other rank holds 0 there), then copy them back to the ghosts
+  for (const auto& f : {_status, _gap, _force})
+  {
+    f->x()->scatter_rev(std::plus<double>());
+    f->x()->scatter_fwd();
+  }
 }
 
 std::shared_ptr<const dolfinx::fem::Function<double>> RigidPlaneContact::contact_level_set()

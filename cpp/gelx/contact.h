@@ -131,6 +131,16 @@ public:
   /// between an active and an inactive node. Collective.
   std::shared_ptr<const dolfinx::fem::Function<double>> contact_level_set();
 
+  /// The contact state at the candidates that are mesh vertices, as scalar nodal fields for
+  /// fields.xdmf (ABAQUS's CSTATUS, COPEN and CNORMF): `contact_status` (1 in contact, 0
+  /// free), `contact_gap` (distance to the plane) and `contact_force` (lambda, the node's
+  /// share of the force), zero away from the candidates, at the state of the last state()
+  /// call.
+  std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>> state_fields() const
+  {
+    return {_status, _gap, _force};
+  }
+
   /// The contact-area functional `form` of forms/_contact.py (generated as contact_area in
   /// contact.py, contact_hex.py) on the candidate surface: the current area where the level set
   /// is positive, without the O(h) steps of counting whole facets. `u` is the displacement as
@@ -171,6 +181,8 @@ private:
   /// The contact forces lambda and the active set at the current state, from the wrapped
   /// system's residual R and the committed set (into _lambda, _trial).
   void trial_active_set(Vec inner_residual);
+  /// Fill state_fields() at the current state. Collective.
+  void update_state_fields();
 
   int _axis, _side;
   ContactMethod _method;
@@ -193,6 +205,9 @@ private:
   std::vector<char> _trial;          ///< the set of the last residual evaluation
   PetscInt _first_row = 0; ///< global index of the first owned row
   std::shared_ptr<dolfinx::fem::Function<double>> _level_set;
+  /// state_fields(), on vertex values, and each candidate's vertex there (-1: not a vertex)
+  std::shared_ptr<dolfinx::fem::Function<double>> _status, _gap, _force;
+  std::vector<std::int32_t> _vertex;
   /// The candidate facets, tagged 1 (the area form's ds(1))
   std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> _surface;
 };

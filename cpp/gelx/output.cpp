@@ -21,9 +21,6 @@
 
 namespace gelx
 {
-namespace
-{
-/// Lagrange space of the given degree on the mesh's cell (discontinuous for degree 0).
 std::shared_ptr<dolfinx::fem::FunctionSpace>
 lagrange_space(std::shared_ptr<const dolfinx::mesh::Mesh> mesh, int degree, int block_size)
 {
@@ -36,7 +33,6 @@ lagrange_space(std::shared_ptr<const dolfinx::mesh::Mesh> mesh, int degree, int 
   return std::make_shared<dolfinx::fem::FunctionSpace>(
       dolfinx::fem::create_functionspace(m, element, block_size));
 }
-} // namespace
 
 CellField::CellField(const std::string& name,
                      std::shared_ptr<const dolfinx::fem::Expression<double>> e)

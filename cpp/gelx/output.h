@@ -24,6 +24,11 @@ namespace gelx
 {
 class Parameters;
 
+/// Lagrange space of the given degree and block size on the mesh's cell (discontinuous for
+/// degree 0): for fields made for output.
+std::shared_ptr<dolfinx::fem::FunctionSpace>
+lagrange_space(std::shared_ptr<const dolfinx::mesh::Mesh> mesh, int degree, int block_size);
+
 /// Cell-wise (DG0) output of a UFL Expression evaluated at the cell midpoints.
 ///
 /// A scalar expression gives one field NAME. A 3x3 tensor (the Cauchy stress) gives scalar

@@ -80,6 +80,8 @@ int main(int argc, char* argv[])
     // 4. The run: a row of steps.csv per accepted step, the fields at each
     gelx::FieldSet fields;
     fields.add("displacement", column.displacement());
+    fields.add("cauchy_stress", column.stress());
+    fields.add("energy_density", column.energy_density());
     const gelx::DynamicsSummary summary = dynamics.run(
         {[&](const gelx::DynamicsRecord& r)
          {

@@ -89,6 +89,18 @@ EulerColumn::EulerColumn(MPI_Comm comm, ColumnParameters p)
           *expression_column_det_F, {{"u", _u}}, _constants, _box.mesh)));
 }
 
+std::shared_ptr<const fem::Expression<double>> EulerColumn::stress() const
+{
+  return std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
+      *expression_column_stress, {{"u", _u}}, _constants, _box.mesh));
+}
+
+std::shared_ptr<const fem::Expression<double>> EulerColumn::energy_density() const
+{
+  return std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
+      *expression_column_psi, {{"u", _u}}, _constants, _box.mesh));
+}
+
 std::shared_ptr<fem::Form<double>>
 EulerColumn::form(ufcx_form* f, std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces,
                   std::shared_ptr<const fem::Function<double>> mode) const

@@ -64,6 +64,9 @@ public:
   NonlinearProblem& problem() { return *_problem; }
   const TaggedMesh& mesh() const { return _box; }
   std::shared_ptr<dolfinx::fem::Function<double>> displacement() const { return _u; }
+  /// The Cauchy stress and the strain energy density, per cell (gelx::FieldSet output)
+  std::shared_ptr<const dolfinx::fem::Expression<double>> stress() const;
+  std::shared_ptr<const dolfinx::fem::Expression<double>> energy_density() const;
   double youngs_modulus() const { return 2 * _p.G * (1 + _p.nu); }
   /// Slenderness K L / r, r = tx / sqrt(12) the radius of gyration about the buckling axis.
   double slenderness() const;

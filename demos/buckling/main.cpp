@@ -131,8 +131,10 @@ int main(int argc, char* argv[])
 
     // The points of all three paths go to steps.csv, told apart by `path`; the buckled
     // branch's shapes to branch/fields.xdmf
-    gelx::FieldSet displacement;
-    displacement.add("displacement", column.displacement());
+    gelx::FieldSet branch_fields;
+    branch_fields.add("displacement", column.displacement());
+    branch_fields.add("cauchy_stress", column.stress());
+    branch_fields.add("energy_density", column.energy_density());
     gelx::ResultsWriter branch_results(run.comm(), results.folder() / "branch", column.mesh().mesh);
     int path_steps = 0, corrector_iterations = 0;
     double path_time = 0;
@@ -209,7 +211,7 @@ int main(int argc, char* argv[])
                  {
                    const auto [deflection, load] = record("branch", pt);
                    branch_deflection = deflection;
-                   branch_results.write_fields(pt.step, displacement.update());
+                   branch_results.write_fields(pt.step, branch_fields.update());
                    run.summary.update(
                        {{"branch_deflection_over_L", deflection},
                         {"branch_load_over_critical", load / P_cr},

@@ -125,6 +125,8 @@ int main(int argc, char* argv[])
     // 4. Follow the path past the maximum, writing every point
     gelx::FieldSet fields;
     fields.add("displacement", shell.displacement());
+    fields.add("cauchy_stress", shell.stress());
+    fields.add("energy_density", shell.energy_density());
     double departure = 0; // the last point's asphericity (the observer's, for the stop test)
     gelx::PathState path = run.start_path(shell.system());
     continuation.run(

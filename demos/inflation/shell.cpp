@@ -129,6 +129,16 @@ InflatedShell::InnerRadii InflatedShell::inner_radii() const
   return {-range[0], range[1], sum[0] / sum[1]};
 }
 
+std::shared_ptr<const fem::Expression<double>> InflatedShell::stress() const
+{
+  return _forms->expression(expression_sphere_stress);
+}
+
+std::shared_ptr<const fem::Expression<double>> InflatedShell::energy_density() const
+{
+  return _forms->expression(expression_sphere_psi);
+}
+
 double InflatedShell::inner_stretch() const { return inner_radii().mean / _p.A; }
 
 double InflatedShell::asphericity() const

@@ -57,6 +57,9 @@ public:
   NonlinearSystem& system();
   const TaggedMesh& mesh() const { return _geo; }
   std::shared_ptr<dolfinx::fem::Function<double>> displacement() const { return _u; }
+  /// The Cauchy stress and the strain energy density, per cell (gelx::FieldSet output)
+  std::shared_ptr<const dolfinx::fem::Expression<double>> stress() const;
+  std::shared_ptr<const dolfinx::fem::Expression<double>> energy_density() const;
 
   /// Set the cavity pressure to p = lambda G.
   void set_load_factor(double lambda);

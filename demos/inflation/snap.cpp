@@ -243,6 +243,8 @@ int main(int argc, char* argv[])
     Curve dynamic;
     gelx::FieldSet fields;
     fields.add("displacement", shell.displacement());
+    fields.add("cauchy_stress", shell.stress());
+    fields.add("energy_density", shell.energy_density());
     if (loading.runs("dynamics"))
     {
       gelx::DampedDynamics dynamics(

@@ -191,6 +191,8 @@ int main(int argc, char* argv[])
     gelx::FieldSet fields;
     fields.add("sigma", pyramid.stress());
     fields.add("displacement", pyramid.displacement());
+    for (const auto& f : pyramid.contact_fields())
+      fields.add(f->name, f);
     PetscInt num_unknowns; // the dofs less the eighth's slip-constrained ones
     GELX_PETSC(VecGetSize(pyramid.system().unknowns(), &num_unknowns));
     run.summary = {{"num_dofs", pyramid.state()->function_space()->dofmap()->index_map->size_global()},

@@ -84,6 +84,12 @@ public:
   /// Cauchy stress expression (for gelx::CellField) and the displacement as a plain function.
   std::shared_ptr<const dolfinx::fem::Expression<double>> stress() const { return _stress; }
   std::shared_ptr<dolfinx::fem::Function<double>> displacement();
+  /// The contact status, gap and force at the candidate vertices (RigidPlaneContact::
+  /// state_fields), at the last measure().
+  std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>> contact_fields() const
+  {
+    return _contact->state_fields();
+  }
 
 private:
   /// A reflection (or the identity) that maps the modelled part onto part of the whole pyramid:

@@ -17,6 +17,7 @@
 #include <regex>
 #include <xtensor/xtensor.hpp>
 #include <gmsh.h>
+#include <gelx_version.h>
 #include <petscversion.h>
 
 namespace gelx
@@ -221,18 +222,18 @@ std::vector<std::string> keys(const nlohmann::json& row)
   return k;
 }
 
-/// Versions of the libraries a run used, for summary.json.
+} // namespace
+
 nlohmann::json software_versions()
 {
   nlohmann::json v;
-  v["gelx"] = "0.1";
+  v["gelx"] = GELX_VERSION;
   v["dolfinx"] = DOLFINX_VERSION_STRING;
   v["petsc"] = std::to_string(PETSC_VERSION_MAJOR) + "." + std::to_string(PETSC_VERSION_MINOR)
                + "." + std::to_string(PETSC_VERSION_SUBMINOR);
   v["gmsh"] = GMSH_API_VERSION;
   return v;
 }
-} // namespace
 
 ResultsWriter::ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
                              std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
@@ -343,6 +344,13 @@ void ResultsWriter::write_summary(const std::string& scene, const std::string& s
   if (_root)
     replace_file(_folder / "summary.json",
                  [&](std::ostream& out) { out << quantities.dump(2) << "\n"; });
+}
+
+void ResultsWriter::write_text(const std::string& file_name, const std::string& text)
+{
+  if (_root)
+    replace_file(_folder / file_name, [&](std::ostream& file) { file << text; });
+  MPI_Barrier(_comm);
 }
 
 void ResultsWriter::write_stl(const std::string& file_name,

@@ -85,6 +85,9 @@ private:
   std::vector<CellField> _cells;
 };
 
+/// Versions of gelx (its git commit) and of the libraries it runs on, as {name: version}.
+nlohmann::json software_versions();
+
 /// A triangle of a surface, its vertices counter-clockwise seen from outside.
 using Triangle = std::array<std::array<double, 3>, 3>;
 
@@ -130,6 +133,9 @@ public:
 
   /// Write a whole table (columns from the first row's keys) to folder/file_name.
   void write_table(const std::string& file_name, const std::vector<nlohmann::json>& rows);
+
+  /// Write `text` to folder/file_name (rank 0; atomically). Collective.
+  void write_text(const std::string& file_name, const std::string& text);
 
   /// Write triangles (of deformed_surface, on rank 0) as binary STL to folder/file_name.
   void write_stl(const std::string& file_name, const std::vector<Triangle>& triangles);

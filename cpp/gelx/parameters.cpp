@@ -1,5 +1,6 @@
 #include "parameters.h"
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -15,6 +16,12 @@ std::string trim(const std::string& s)
   if (b == std::string::npos)
     return "";
   return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+/// A PETSc option's name (-name), not a negative number given as its value
+bool is_option_name(const std::string& word)
+{
+  return word.size() > 1 && word[0] == '-' && !std::isdigit(word[1]) && word[1] != '.';
 }
 
 std::string to_text(const Parameters::Value& v)
@@ -209,6 +216,7 @@ std::vector<std::string> Parameters::parse(int argc, char* argv[], bool* help_re
         throw InputError("unexpected argument '" + arg + "'");
       petsc_value_may_follow = arg.rfind("-", 0) == 0;
       rest.push_back(arg);
+      _petsc_arguments.push_back(arg);
       continue;
     }
     petsc_value_may_follow = false;
@@ -231,7 +239,12 @@ std::vector<std::string> Parameters::parse(int argc, char* argv[], bool* help_re
         throw InputError("option --" + name + " needs a value");
     }
     if (name == "scene")
+    {
+      // The file's PETSc options go where the file is named: later ones override them
+      const std::size_t known = _petsc_arguments.size();
       read_file(value);
+      rest.insert(rest.end(), _petsc_arguments.begin() + known, _petsc_arguments.end());
+    }
     else
     {
       set(name, value);
@@ -252,12 +265,58 @@ void Parameters::read_file(const std::string& path)
     line = trim(line.substr(0, line.find('#')));
     if (line.empty())
       continue;
+    if (line[0] == '-')
+    {
+      std::istringstream words(line);
+      for (std::string word; words >> word;)
+        _petsc_arguments.push_back(word);
+      continue;
+    }
     const auto eq = line.find('=');
     if (eq == std::string::npos)
       throw InputError(path + ":" + std::to_string(number) + ": expected 'name = value'");
     set(trim(line.substr(0, eq)), line.substr(eq + 1));
     _given.insert(trim(line.substr(0, eq)));
   }
+}
+
+std::string Parameters::scene_file(const std::set<std::string>& omit) const
+{
+  std::vector<std::string> sections;
+  std::map<std::string, std::vector<std::string>> by_section;
+  for (const auto& name : _order)
+  {
+    if (omit.count(name))
+      continue;
+    const auto& s = _entries.at(name).section;
+    if (by_section[s].empty())
+      sections.push_back(s);
+    by_section[s].push_back(name);
+  }
+  std::ostringstream out;
+  for (const auto& s : sections)
+  {
+    out << "# " << s << "\n";
+    for (const auto& name : by_section[s])
+    {
+      const Value& v = _entries.at(name).value;
+      std::string text = to_text(v);
+      if (const double* x = std::get_if<double>(&v))
+      {
+        char digits[32];
+        text.assign(digits, std::to_chars(digits, digits + sizeof(digits), *x).ptr);
+      }
+      out << name << " = " << text << "\n";
+    }
+  }
+  if (!_petsc_arguments.empty())
+  {
+    out << "# PETSc options";
+    for (const auto& word : _petsc_arguments)
+      out << (is_option_name(word) ? "\n" : " ") << word;
+    out << "\n";
+  }
+  return out.str();
 }
 
 double Parameters::real(const std::string& name) const

@@ -61,8 +61,18 @@ public:
   /// also for a word that is neither (PETSc would ignore it silently).
   std::vector<std::string> parse(int argc, char* argv[], bool* help_requested = nullptr);
 
-  /// Read `name = value` lines (`#` starts a comment). Throws InputError.
+  /// Read `name = value` lines (`#` starts a comment) and lines of PETSc options
+  /// (`-name [value]`, kept in petsc_arguments() for parse() to hand on). Throws InputError.
   void read_file(const std::string& path);
+
+  /// The PETSc options given on the command line and in scene files, word by word in the
+  /// order parse() met them.
+  const std::vector<std::string>& petsc_arguments() const { return _petsc_arguments; }
+
+  /// A scene file that gives every parameter except those in `omit` its current value, by
+  /// section, exactly (reals in their shortest form that reads back to the same double), then
+  /// the PETSc options given (petsc_arguments()): `--scene FILE` reads it back.
+  std::string scene_file(const std::set<std::string>& omit) const;
 
   /// Set one parameter from its text form, validating it. Throws InputError.
   void set(const std::string& name, const std::string& text);
@@ -102,6 +112,7 @@ private:
   std::map<std::string, Entry> _entries;
   std::vector<std::string> _order;
   std::set<std::string> _given;
+  std::vector<std::string> _petsc_arguments;
 };
 
 } // namespace gelx

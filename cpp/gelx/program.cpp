@@ -5,6 +5,7 @@
 #include "timing.h"
 
 #include <cstdio>
+#include <dolfinx/common/MPI.h>
 #include <dolfinx/common/log.h>
 #include <iostream>
 #include <petscsys.h>
@@ -114,6 +115,18 @@ ResultsWriter& Run::results(std::shared_ptr<const dolfinx::mesh::Mesh> mesh)
   else
     keep = _restart_record.at("run").value("results", ResultsProgress{});
   _results = std::make_unique<ResultsWriter>(_comm, _parameters.text("output"), mesh, keep);
+  // The run's scene file: what --scene needs to run it again, to the last digit on as many
+  // ranks. The folder and the restart are where a run goes, not what it computes.
+  const nlohmann::json versions = software_versions();
+  std::ostringstream scene;
+  scene << "# gelx-" << _scene << ", gelx " << versions["gelx"].get<std::string>() << ", dolfinx "
+        << versions["dolfinx"].get<std::string>() << ", PETSc "
+        << versions["petsc"].get<std::string>() << ", " << dolfinx::MPI::size(_comm)
+        << " MPI rank(s). Run it again with\n#   ./gelx run SCENE --scene scene.txt --np "
+        << dolfinx::MPI::size(_comm) << "\n# (SCENE the folder in demos/ that builds gelx-"
+        << _scene << "; the scene's own solver defaults are not listed: it sets them again)\n"
+        << _parameters.scene_file({"output", "restart"});
+  _results->write_text("scene.txt", scene.str());
   return *_results;
 }
 

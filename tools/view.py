@@ -4,7 +4,7 @@ virtual display (Debian's ParaView renders only on an X display).
 
 usage: pvbatch view.py RESULTS [--defaults JSON] [--file XDMF] [--field NAME] [--step K]
                        [--png PATH] [--reflect PLANE ...] [--focus X Y Z] [--extent E]
-                       [--direction X Y Z] [--up X Y Z]
+                       [--direction X Y Z] [--up X Y Z] [--size W H]
   RESULTS     a run's results folder
   --defaults  a scene's picture (demos/SCENE/view.json): defaults for the options below, by
               their names
@@ -19,6 +19,7 @@ usage: pvbatch view.py RESULTS [--defaults JSON] [--file XDMF] [--field NAME] [-
               height (default: the whole body)
   --direction, --up   the direction the camera looks along, and its up vector (default
               (-1, 1, -0.7), from the front right and above; +z up)
+  --size      the picture's width and height in pixels (default 1200 900)
 Bad input (no results, an unknown field, a step out of range) ends in one line and exit code 1.
 """
 import argparse
@@ -40,6 +41,7 @@ cli.add_argument("--focus", type=float, nargs=3)
 cli.add_argument("--extent", type=float)
 cli.add_argument("--direction", type=float, nargs=3, default=[-1, 1, -0.7])
 cli.add_argument("--up", type=float, nargs=3, default=[0, 0, 1])
+cli.add_argument("--size", type=int, nargs=2, default=[1200, 900])
 args = cli.parse_args()
 if args.defaults:
     # the scene's choices replace the defaults; the command line still overrides them
@@ -81,7 +83,7 @@ if "displacement" in point_arrays:
     body = simple.WarpByVector(Input=body, Vectors=["POINTS", "displacement"], ScaleFactor=1.0)
 
 view = simple.CreateView("RenderView")
-view.ViewSize = [1200, 900]
+view.ViewSize = args.size
 view.ViewTime = time
 view.UseColorPaletteForBackground = 0
 view.Background = [1, 1, 1]
@@ -113,5 +115,5 @@ if args.focus:
 if args.extent:
     view.CameraParallelScale = args.extent
 png = args.png or args.results / f"{field}_step{args.step % len(times)}.png"
-simple.SaveScreenshot(str(png), view, ImageResolution=[1200, 900])
+simple.SaveScreenshot(str(png), view, ImageResolution=args.size)
 print(f"gelx view: {png} ({field} at step {args.step % len(times)}, t = {time:.6g})")

@@ -494,11 +494,6 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
     state.step_size = ds;
     record.wall_time
         = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (root)
-      std::printf("  arc-length step %d: lambda = %.10g, s = %.6g, %d iterations%s%s\n",
-                  record.step, lambda, record.arc_length, report.iterations,
-                  record.limit_point ? " (limit point passed)" : "",
-                  record.bifurcation ? " (bifurcation passed)" : "");
     for (const auto& observe : observers)
       observe(record, state);
     if (stop(record))

@@ -136,6 +136,8 @@ public:
   const DynamicsSummary& summary() const { return _summary; }
   double loading_time() const { return _loading_time; }
   double hold_time() const { return _hold_time; }
+  /// The time the run ends at: loading and hold
+  double end_time() const { return _loading_time + _hold_time; }
   double damping() const { return _damping; }
   TS ts() const { return _ts; }
 

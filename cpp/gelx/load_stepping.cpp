@@ -63,8 +63,6 @@ void LoadStepper::run(PathState& state, const std::vector<StepObserver>& observe
     if (t + 1.25 * dt >= t_end)
       dt = t_end - t;
     GELX_PETSC(VecCopy(_system.unknowns(), saved.get()));
-    if (root)
-      std::printf("  step %d: t = %.6g (dt = %.4g)\n", state.step + 1, t + dt, dt);
     _apply_load(t + dt);
     NewtonReport report = _newton.solve(_system);
     if (!report.converged)

@@ -55,7 +55,8 @@ std::string unused_options()
 /// The parameters that belong to the run, not to the scene: a restart may set them.
 bool is_run_parameter(const std::string& name)
 {
-  return name == "output" || name == "checkpoint_every" || name == "restart";
+  return name == "output" || name == "checkpoint_every" || name == "restart"
+         || name == "stop_after_steps";
 }
 
 /// With --restart DIR: DIR's newest checkpoint, whose scene parameters `parameters` takes
@@ -195,6 +196,10 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
   parameters.add("output", "checkpoint_every", 1,
                  "write a checkpoint of the path every N steps (0: none)",
                  [](int v) { return v >= 0 ? "" : "must not be negative"; });
+  parameters.add("output", "stop_after_steps", 0,
+                 "end the run, as a success, after this many steps in all (0: run to the end): "
+                 "a quick check that a command runs",
+                 [](int v) { return v >= 0 ? "" : "must not be negative"; });
   parameters.add("output", "restart", "",
                  "continue the run in this results folder from its newest checkpoint, with its "
                  "parameters");
@@ -248,6 +253,7 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
     if (rank == 0)
       std::cout << name << " parameters:\n" << parameters.table(false) << std::flush;
     Run run(PETSC_COMM_WORLD, scene, parameters, checkpoint);
+    set_step_budget(parameters.integer("stop_after_steps"));
     try
     {
       body(run);
@@ -255,6 +261,12 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
         throw InputError("no solver object read the option(s) " + unused
                          + " (misspelt, or for an object this run does not have)");
       run.finish("completed");
+    }
+    catch (const StepBudgetSpent& e) // on every rank at the same step; options the rest of
+    {                                // the run would read are not checked
+      run.finish(std::string("completed: ") + e.what());
+      if (rank == 0)
+        std::cout << name << ": " << e.what() << std::endl;
     }
     catch (const InputError& e) // raised identically on every rank
     {

@@ -6,6 +6,7 @@
 #include "output.h"
 #include "parameters.h"
 #include "path.h"
+#include "progress.h"
 #include <chrono>
 #include <filesystem>
 #include <functional>

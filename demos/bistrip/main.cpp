@@ -461,6 +461,11 @@ int main(int argc, char* argv[])
       }
     };
 
+    // One progress line per step: the end distance, the end force
+    const gelx::ProgressLine::Options progress_options{
+        .load_name = "end distance",
+        .load = [&](const gelx::StepRecord&) { return strip.end_distance(); },
+        .quantity = [&] { return gelx::quantity_text("end force", last_force); }};
     if (a.method == "dynamics")
     {
       // Damped quasi-static dynamics. Time in s with the
@@ -479,12 +484,14 @@ int main(int argc, char* argv[])
       {
         gelx::DampedDynamics dynamics(run.comm(), problem, *strip.mass_form(),
                                       [&] { return strip.strain_energy(); }, load, prefix);
+        gelx::ProgressLine progress(run.comm(), progress_options);
         const gelx::DynamicsSummary summary = dynamics.run(
             {[&](const gelx::DynamicsRecord& r)
              {
                step_done(r.to_json(), dissipated_before + r.dissipated_energy,
-                         r.time >= dynamics.loading_time() + dynamics.hold_time() - 1e-12);
+                         r.time >= dynamics.end_time() - 1e-12);
                run.summary[key] = dynamics.summary().to_json();
+               progress.print(r.step, strip.end_distance(), r.time / dynamics.end_time());
              }});
         run.summary[key] = summary.to_json();
         return dissipated_before + summary.dissipated_energy;
@@ -536,6 +543,8 @@ int main(int argc, char* argv[])
                                    [&](double shortening)
                                    { strip.set_end_distance(p.L - shortening); });
       gelx::PathState path;
+      gelx::ProgressLine::Options arclength_progress = progress_options;
+      arclength_progress.fraction = [&](const gelx::StepRecord& pt) { return pt.load / travel; };
       continuation.run(
           path, a.max_steps,
           {[&](const gelx::StepRecord& pt, gelx::PathState&)
@@ -546,7 +555,8 @@ int main(int argc, char* argv[])
                         {"cutbacks", pt.cutbacks},
                         {"wall_time", pt.wall_time}},
                        0.0, pt.load >= travel);
-           }},
+           },
+           gelx::ProgressLine(run.comm(), arclength_progress)},
           [&](const gelx::StepRecord& pt) { return pt.load >= travel; });
       run.summary["arclength_steps"] = path.step;
       if (strip.end_distance() > a.end_distance)

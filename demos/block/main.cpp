@@ -150,6 +150,11 @@ int main(int argc, char* argv[])
                                     {"newton_iterations", state.scene["newton_iterations"]},
                                     {"cutbacks", state.cutbacks}});
               },
+              gelx::ProgressLine(run.comm(),
+                                 {.quantity = [&] {
+                                   return gelx::quantity_text("axial force",
+                                                              run.summary["axial_force"]);
+                                 }}),
               run.checkpoints()});
   });
 }

@@ -82,10 +82,14 @@ int main(int argc, char* argv[])
     fields.add("displacement", column.displacement());
     fields.add("cauchy_stress", column.stress());
     fields.add("energy_density", column.energy_density());
+    double d = 0; // the last step's deflection / L
+    gelx::ProgressLine progress(
+        run.comm(), {.quantity = [&] { return gelx::quantity_text("deflection/L", d); }});
     const gelx::DynamicsSummary summary = dynamics.run(
         {[&](const gelx::DynamicsRecord& r)
          {
-           const double d = column.lateral_deflection(), P = column.axial_force();
+           d = column.lateral_deflection();
+           const double P = column.axial_force();
            nlohmann::json row = r.to_json();
            row.update({{"deflection_over_L", d},
                        {"axial_force_over_critical", P / P_cr},
@@ -93,6 +97,7 @@ int main(int argc, char* argv[])
            results.append_step(row);
            results.write_fields(r.time, fields.update());
            run.summary["dynamics"] = dynamics.summary().to_json();
+           progress.print(r.step, r.time, r.time / dynamics.end_time());
          }});
     run.summary["dynamics"] = summary.to_json();
     run.summary.update({{"deflection_over_L", column.lateral_deflection()},

@@ -138,6 +138,10 @@ int main(int argc, char* argv[])
     gelx::ResultsWriter branch_results(run.comm(), results.folder() / "branch", column.mesh().mesh);
     int path_steps = 0, corrector_iterations = 0;
     double path_time = 0;
+    // A progress line per path: the buckled branch ends at max_deflection, the others on an
+    // event (a bifurcation, the end of the diagram's range), with no estimate of the time left
+    std::map<std::string, gelx::ProgressLine> progress;
+    double deflection_shown = 0;
     // Records one path point; returns its (deflection / L, axial force / Euler load)
     auto record = [&](const std::string& path, const gelx::StepRecord& pt)
     {
@@ -165,6 +169,16 @@ int main(int argc, char* argv[])
                           {"corrector_iterations_per_step",
                            double(corrector_iterations) / path_steps},
                           {"time_per_arclength_step", path_time / path_steps}});
+      deflection_shown = deflection;
+      progress
+          .try_emplace(path, run.comm(),
+                       gelx::ProgressLine::Options{
+                           .load_name = "P/P_E",
+                           .quantity = [&, path] {
+                             return path + ": " + gelx::quantity_text("deflection/L", deflection_shown);
+                           }})
+          .first->second.print(pt, pt.load,
+                               path == "branch" ? deflection / a.max_deflection : NAN);
       return std::pair{deflection, force};
     };
     // A path of the column with its own options prefix and the scene's defaults for it

@@ -123,6 +123,14 @@ int main(int argc, char* argv[])
                                     {"load_steps", step.step},
                                     {"newton_iterations", state.scene["newton_iterations"]}});
               },
+              gelx::ProgressLine(
+                  run.comm(),
+                  {.load_name = "T",
+                   .load = [&](const gelx::StepRecord& r)
+                   { return gel.T_i + r.load * (gel.T_f - gel.T_i); },
+                   .quantity = [&] {
+                     return gelx::quantity_text("alpha_par/alpha_perp", run.summary["anisotropy"]);
+                   }}),
               run.checkpoints()});
   });
 }

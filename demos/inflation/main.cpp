@@ -170,6 +170,15 @@ int main(int argc, char* argv[])
                 {"time_per_corrector_iteration",
                  curve.time / std::max(curve.corrector_iterations, 1)}});
          },
+         // The path ends on an event (descent past the maximum, a bifurcation), not at a
+         // known load: no estimate of the time left
+         gelx::ProgressLine(run.comm(),
+                            {.load_name = "p/G",
+                             .quantity = [&] {
+                               return gelx::quantity_text("inner stretch",
+                                                          run.summary["final_stretch"]);
+                             },
+                             .fraction = [](const gelx::StepRecord&) { return NAN; }}),
          run.checkpoints()},
         [&](const gelx::StepRecord& pt)
         {

@@ -64,6 +64,17 @@ struct Curve
   {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
+  /// The progress line of a method that follows it: pressure and inner stretch at each step,
+  /// `fraction` how far the method has got (default: its load factor)
+  gelx::ProgressLine progress(MPI_Comm comm,
+                              std::function<double(const gelx::StepRecord&)> fraction = {}) const
+  {
+    return gelx::ProgressLine(
+        comm, {.load_name = "p/G",
+               .load = [this](const gelx::StepRecord&) { return pressure.back(); },
+               .quantity = [this] { return gelx::quantity_text("inner stretch", stretch.back()); },
+               .fraction = std::move(fraction)});
+  }
 };
 
 /// The stretch where the curve's pressure passes `pressure` after its last minimum: linear
@@ -202,16 +213,18 @@ int main(int argc, char* argv[])
       gelx::LoadStepper stepper(shell.system(), newton, options,
                                 [&](double t) { set_pressure(t * target); });
       std::string outcome = "reached the target pressure";
+      gelx::ProgressLine progress = stepped.progress(run.comm());
       try
       {
         stepper.run(
-            [&](const gelx::StepRecord& s, gelx::PathState&)
+            [&](const gelx::StepRecord& s, gelx::PathState& state)
             {
               point(stepped, s.load * target,
                     {{"step", s.step},
                      {"iterations", s.newton.iterations},
                      {"cutbacks", s.cutbacks},
                      {"wall_time", s.wall_time}});
+              progress(s, state);
             });
       }
       catch (const gelx::ConvergenceError& e)
@@ -250,12 +263,14 @@ int main(int argc, char* argv[])
       gelx::DampedDynamics dynamics(
           run.comm(), shell.system(), *shell.mass_form(), [&] { return shell.strain_energy(); },
           [&](double a) { set_pressure(a * target); });
+      gelx::ProgressLine progress = dynamic.progress(run.comm());
       const gelx::DynamicsSummary summary = dynamics.run(
           {[&](const gelx::DynamicsRecord& r)
            {
              point(dynamic, r.step.load * target, r.to_json());
              results.append_step(dynamic.rows.back());
              results.write_fields(r.time, fields.update());
+             progress.print(r.step, dynamic.pressure.back(), r.time / dynamics.end_time());
            }});
       run.summary["dynamics"] = summary.to_json();
       run.summary["dynamics"].update(
@@ -280,9 +295,12 @@ int main(int argc, char* argv[])
       gelx::ArcLength continuation(run.comm(), shell.system(), set_pressure);
       gelx::PathState path;
       std::vector<std::size_t> extrema; // the points just past the maximum and the minimum
+      // It ends on passing two extrema, not at a known load: no estimate of the time left
+      gelx::ProgressLine progress
+          = continued.progress(run.comm(), [](const gelx::StepRecord&) { return NAN; });
       continuation.run(
           path, loading.max_steps,
-          {[&](const gelx::StepRecord& pt, gelx::PathState&)
+          {[&](const gelx::StepRecord& pt, gelx::PathState& state)
            {
              point(continued, pt.load,
                    {{"step", pt.step},
@@ -293,6 +311,7 @@ int main(int argc, char* argv[])
                     {"wall_time", pt.wall_time}});
              if (pt.limit_point)
                extrema.push_back(continued.pressure.size() - 1);
+             progress(pt, state);
            }},
           [&](const gelx::StepRecord& pt) { return extrema.size() >= 2 && pt.load >= target; });
       results.write_table("arclength.csv", continued.rows);

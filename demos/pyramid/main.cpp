@@ -92,6 +92,12 @@ WidthCurve press(gelx::scenes::PressedPyramid& pyramid, const Loading& loading,
                  gelx::PathState path = {}, const gelx::StepObserver& checkpoints = nullptr)
 {
   gelx::NewtonSolver newton(pyramid.mesh().mesh->comm());
+  double width = 0; // the last step's l_c/L (gap law), for the progress line
+  gelx::ProgressLine progress(
+      pyramid.mesh().mesh->comm(),
+      {.load_name = "d/H",
+       .load = [&](const gelx::StepRecord& r) { return loading.d_over_H(r.load); },
+       .quantity = [&] { return gelx::quantity_text("l_c/L", width); }});
   gelx::LoadStepper(pyramid.system(), newton, stepping,
                     [&](double s) { pyramid.set_indentation(loading.d_over_H(s) * pyramid.height()); })
       .run(path,
@@ -109,6 +115,8 @@ WidthCurve press(gelx::scenes::PressedPyramid& pyramid, const Loading& loading,
               }
               state.scene["width_curve"] = curve;
               record(step, d, measures);
+              width = measures.width_gap_law / L;
+              progress(step, state);
               if (checkpoints)
                 checkpoints(step, state);
             }});

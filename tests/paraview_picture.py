@@ -32,7 +32,9 @@ if missing:
 
 def render(step):
     png = out / f"block_step{step}.png"
-    run = subprocess.run(["xvfb-run", "-a", "pvbatch", str(view), str(results), "--step",
+    # one render at a time on the machine, as ./gelx view does (xvfb-run -a races otherwise)
+    run = subprocess.run(["flock", "/tmp/gelx-render.lock", "xvfb-run", "-a", "pvbatch",
+                          str(view), str(results), "--step",
                           str(step), "--png", str(png)], capture_output=True, text=True,
                          timeout=300)
     checks.require(f"rendered step {step} (exit code {run.returncode}): {run.stdout.strip()}",

@@ -34,7 +34,7 @@ struct GelKernels
   ufcx_function_space* (*space)(const char*);
   const char* coefficient;
   ufcx_form *residual, *tangent;
-  ufcx_expression *stress, *margin;
+  ufcx_expression *stress, *energy_density, *margin;
 };
 
 GelKernels gel_kernels(int order)
@@ -42,11 +42,11 @@ GelKernels gel_kernels(int order)
   if (order == 1)
     return {functionspace_form_fiber_gel_residual_p1, "u_p1", form_fiber_gel_residual_p1,
             form_fiber_gel_tangent_p1, expression_fiber_gel_stress_p1,
-            expression_fiber_gel_margin_p1};
+            expression_fiber_gel_psi_p1, expression_fiber_gel_margin_p1};
   if (order == 2)
     return {functionspace_form_fiber_gel_residual_p2, "u_p2", form_fiber_gel_residual_p2,
             form_fiber_gel_tangent_p2, expression_fiber_gel_stress_p2,
-            expression_fiber_gel_margin_p2};
+            expression_fiber_gel_psi_p2, expression_fiber_gel_margin_p2};
   throw InputError("order must be 1 or 2");
 }
 } // namespace
@@ -83,6 +83,7 @@ FiberGelCell::FiberGelCell(MPI_Comm comm, const FiberCellGeometry& geometry,
         fem::create_expression<double>(*e, coefficients, constants, _mesh.mesh));
   };
   _stress = expression(kernels.stress);
+  _energy_density = expression(kernels.energy_density);
 
   // The fiber is rigid and bonded to the gel
   _bcs = std::make_unique<DirichletConditions>(V, _mesh.facet_tags);

@@ -74,6 +74,11 @@ public:
   std::shared_ptr<const dolfinx::fem::Function<double>> displacement() const { return _u; }
   /// Cauchy stress (MPa) expression, for gelx::CellField (von Mises: Fig. 4.8).
   std::shared_ptr<const dolfinx::fem::Expression<double>> stress() const { return _stress; }
+  /// The gel's free energy density per cell (gelx::CellField)
+  std::shared_ptr<const dolfinx::fem::Expression<double>> energy_density() const
+  {
+    return _energy_density;
+  }
   /// Smallest J - phi0 over the quadrature points (the gel's admissibility). Collective.
   double admissibility_margin() const { return _problem->admissibility_margin(); }
   std::int64_t num_dofs() const;
@@ -96,7 +101,7 @@ private:
   std::unique_ptr<MultipointConstraint> _mpc;
   /// Macro unknowns: _macro[i][j] the jump of u_i across the cell along axis j (-1: none)
   std::array<std::array<int, 3>, 3> _macro;
-  std::shared_ptr<const dolfinx::fem::Expression<double>> _stress;
+  std::shared_ptr<const dolfinx::fem::Expression<double>> _stress, _energy_density;
 };
 
 } // namespace gelx::scenes

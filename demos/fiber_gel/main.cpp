@@ -89,6 +89,7 @@ int main(int argc, char* argv[])
     gelx::FieldSet fields;
     fields.add("sigma", cell.stress()); // sigma_vm: Fig. 4.8
     fields.add("displacement", cell.displacement());
+    fields.add("energy_density", cell.energy_density());
     gelx::NewtonSolver newton(run.comm());
     gelx::PathState path = run.start_path(cell.system());
     gelx::LoadStepper(cell.system(), newton, stepping,

@@ -198,6 +198,7 @@ int main(int argc, char* argv[])
     gelx::ResultsWriter& results = run.results(pyramid.mesh().mesh);
     gelx::FieldSet fields;
     fields.add("sigma", pyramid.stress());
+    fields.add("energy_density", pyramid.energy_density());
     fields.add("displacement", pyramid.displacement());
     for (const auto& f : pyramid.contact_fields())
       fields.add(f->name, f);

@@ -23,7 +23,7 @@ struct LawForms
 {
   ufcx_function_space* (*space)(const char*);
   ufcx_form *residual, *tangent;
-  ufcx_expression *stress, *det_F;
+  ufcx_expression *stress, *energy_density, *det_F;
   ufcx_form* contact_area;
   ufcx_form* pressure_mass; ///< preconditions the fieldsplit solver's Schur complement
 };
@@ -33,30 +33,36 @@ LawForms law_forms(const std::string& law, int order)
   const std::map<std::pair<std::string, int>, LawForms> table = {
       {{"nh", 2},
        {functionspace_form_mixed_hex_residual_nh, form_mixed_hex_residual_nh,
-        form_mixed_hex_tangent_nh, expression_mixed_hex_stress_nh, expression_mixed_hex_det_F,
+        form_mixed_hex_tangent_nh, expression_mixed_hex_stress_nh, expression_mixed_hex_psi_nh,
+        expression_mixed_hex_det_F,
         form_contact_hex_contact_area, form_mixed_hex_pressure_mass}},
       {{"mr", 2},
        {functionspace_form_mixed_hex_residual_mr, form_mixed_hex_residual_mr,
-        form_mixed_hex_tangent_mr, expression_mixed_hex_stress_mr, expression_mixed_hex_det_F,
+        form_mixed_hex_tangent_mr, expression_mixed_hex_stress_mr, expression_mixed_hex_psi_mr,
+        expression_mixed_hex_det_F,
         form_contact_hex_contact_area, form_mixed_hex_pressure_mass}},
       {{"le", 2},
        {functionspace_form_mixed_hex_residual_le, form_mixed_hex_residual_le,
-        form_mixed_hex_tangent_le, expression_mixed_hex_stress_le, expression_mixed_hex_det_F,
+        form_mixed_hex_tangent_le, expression_mixed_hex_stress_le, expression_mixed_hex_psi_le,
+        expression_mixed_hex_det_F,
         form_contact_hex_contact_area, form_mixed_hex_pressure_mass}},
       {{"nh", 1},
        {functionspace_form_mixed_hex_q1_residual_nh, form_mixed_hex_q1_residual_nh,
         form_mixed_hex_q1_tangent_nh, expression_mixed_hex_q1_stress_nh,
-        expression_mixed_hex_q1_det_F, form_contact_hex_q1_contact_area,
+        expression_mixed_hex_q1_psi_nh, expression_mixed_hex_q1_det_F,
+        form_contact_hex_q1_contact_area,
         form_mixed_hex_q1_pressure_mass}},
       {{"mr", 1},
        {functionspace_form_mixed_hex_q1_residual_mr, form_mixed_hex_q1_residual_mr,
         form_mixed_hex_q1_tangent_mr, expression_mixed_hex_q1_stress_mr,
-        expression_mixed_hex_q1_det_F, form_contact_hex_q1_contact_area,
+        expression_mixed_hex_q1_psi_mr, expression_mixed_hex_q1_det_F,
+        form_contact_hex_q1_contact_area,
         form_mixed_hex_q1_pressure_mass}},
       {{"le", 1},
        {functionspace_form_mixed_hex_q1_residual_le, form_mixed_hex_q1_residual_le,
         form_mixed_hex_q1_tangent_le, expression_mixed_hex_q1_stress_le,
-        expression_mixed_hex_q1_det_F, form_contact_hex_q1_contact_area,
+        expression_mixed_hex_q1_psi_le, expression_mixed_hex_q1_det_F,
+        form_contact_hex_q1_contact_area,
         form_mixed_hex_q1_pressure_mass}}};
   const auto it = table.find({law, order});
   if (it == table.end())
@@ -136,6 +142,8 @@ PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry,
   set_indentation(0);
   _stress = std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
       *kernels.stress, {{"w", _w}}, constants, _mesh.mesh));
+  _energy_density = std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
+      *kernels.energy_density, {{"w", _w}}, constants, _mesh.mesh));
 
   _u = collapse_sub_function(*_w, 0);
   _area = _contact->area_form(*kernels.contact_area, _u);

@@ -83,6 +83,11 @@ public:
 
   /// Cauchy stress expression (for gelx::CellField) and the displacement as a plain function.
   std::shared_ptr<const dolfinx::fem::Expression<double>> stress() const { return _stress; }
+  /// The strain energy density per cell (gelx::CellField)
+  std::shared_ptr<const dolfinx::fem::Expression<double>> energy_density() const
+  {
+    return _energy_density;
+  }
   std::shared_ptr<dolfinx::fem::Function<double>> displacement();
   /// The contact status, gap and force at the candidate vertices (RigidPlaneContact::
   /// state_fields), at the last measure().
@@ -116,7 +121,7 @@ private:
   std::unique_ptr<NonlinearProblem> _problem;
   std::unique_ptr<MultipointConstraint> _diagonal_slip; ///< the eighth's only
   std::unique_ptr<RigidPlaneContact> _contact;
-  std::shared_ptr<const dolfinx::fem::Expression<double>> _stress;
+  std::shared_ptr<const dolfinx::fem::Expression<double>> _stress, _energy_density;
   std::shared_ptr<dolfinx::fem::Form<double>> _area;
 };
 

@@ -27,6 +27,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace th = gelx::theory;
@@ -166,6 +167,15 @@ int main(int argc, char* argv[])
     out = prm.text("output");
     std::filesystem::create_directories(out);
     std::filesystem::remove(out / "summary.json"); // a previous run's must not pass for this one's
+    // The run's scene file, as every gelx run writes: --scene reads it back (the PEO values
+    // only when given: an unset one is no value)
+    std::set<std::string> omit = {"output"};
+    for (const char* name : peo_names)
+      if (!std::isfinite(prm.real(name)))
+        omit.insert(name);
+    std::ofstream(out / "scene.txt") << "# gelx-flory_rehner: ./gelx run flory_rehner --scene "
+                                        "scene.txt runs it again\n"
+                                     << prm.scene_file(omit);
     summary = {{"parameters", prm.to_json()}};
     const auto t_start = std::chrono::steady_clock::now();
 

@@ -1,5 +1,5 @@
-"""`./gelx view`'s renderer (tools/view.py under xvfb-run pvbatch) on a block run: the PNG it
-writes shows the deformed block coloured by von Mises stress over the colour map's range.
+"""`./gelx view` on a block run: the PNG it writes (tools/view.py, rendered by pvbatch under
+xvfb-run) shows the deformed block coloured by von Mises stress over the colour map's range.
 
 Checks, on the pixels: the picture has the requested size; the body covers a sensible part of
 it (not an empty or a flooded view: 5-80 % of the pixels differ from the white background);
@@ -22,7 +22,7 @@ from checks import Checks
 
 results, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
 out.mkdir(parents=True, exist_ok=True)
-view = pathlib.Path(__file__).resolve().parents[1] / "tools" / "view.py"
+gelx = pathlib.Path(__file__).resolve().parents[1] / "gelx"
 checks = Checks()
 missing = [p for p in ("xvfb-run", "pvbatch") if shutil.which(p) is None]
 checks.require(f"xvfb-run and pvbatch are installed (missing: {missing})", not missing)
@@ -32,13 +32,11 @@ if missing:
 
 def render(step):
     png = out / f"block_step{step}.png"
-    # one render at a time on the machine, as ./gelx view does (xvfb-run -a races otherwise)
-    run = subprocess.run(["flock", "/tmp/gelx-render.lock", "xvfb-run", "-a", "pvbatch",
-                          str(view), str(results), "--step",
+    run = subprocess.run([str(gelx), "view", "block", "--output", str(results), "--step",
                           str(step), "--png", str(png)], capture_output=True, text=True,
                          timeout=300)
-    checks.require(f"rendered step {step} (exit code {run.returncode}): {run.stdout.strip()}",
-                   run.returncode == 0 and png.is_file())
+    checks.require(f"./gelx view rendered step {step} (exit code {run.returncode}): "
+                   f"{run.stdout.strip()}", run.returncode == 0 and png.is_file())
     if run.returncode != 0:
         print(run.stderr[-2000:])
         checks.finish()

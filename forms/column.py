@@ -24,6 +24,12 @@ dx = ufl.dx(metadata={"quadrature_degree": materials.quadrature_degree(degree)})
 ds = ufl.ds(metadata={"quadrature_degree": materials.quadrature_degree(degree)})
 v = ufl.TestFunction(V)
 residual = ufl.derivative(psi * dx, u, v) + q * v[2] * ds(2)
+# The same column of small-strain linear elasticity (ColumnParameters::law): a linear problem,
+# whose vibration the trapezoidal rule follows with its energy exactly conserved
+psi_linear = materials.linear_elastic(F, G, K)
+residual_linear = ufl.derivative(psi_linear * dx, u, v) + q * v[2] * ds(2)
+tangent_linear = ufl.derivative(residual_linear, u, ufl.TrialFunction(V))
+strain_energy_linear = psi_linear * dx
 potential_energy = psi * dx + q * u[2] * ds(2)  # the residual is its derivative
 tangent = ufl.derivative(residual, u, ufl.TrialFunction(V))
 # Damped dynamics (gelx::DampedDynamics): the consistent mass and the stored (strain) energy
@@ -42,7 +48,7 @@ det_F = ufl.det(F)  # admissibility: det F > 0
 stress = materials.cauchy_stress(psi, F)
 
 forms = [residual, tangent, potential_energy, mass, strain_energy, mode_odd_part, mode_odd_scale,
-         mode_even_part, mode_even_scale]
+         mode_even_part, mode_even_scale, residual_linear, tangent_linear, strain_energy_linear]
 # The admissibility check at the quadrature points; stress and energy density per cell (output)
 centroid = materials.centroid(cell)
 expressions = [(det_F, materials.quadrature_points(cell, materials.quadrature_degree(degree))),

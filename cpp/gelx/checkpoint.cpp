@@ -150,6 +150,14 @@ std::vector<std::int64_t> match(const std::vector<double>& keys, const std::vect
   return rows;
 }
 
+nlohmann::json vector_names(const PathState& s)
+{
+  nlohmann::json names = nlohmann::json::array();
+  for (const auto& [name, v] : s.vectors)
+    names.push_back(name);
+  return names;
+}
+
 nlohmann::json path_to_json(const PathState& s)
 {
   return {{"step", s.step},
@@ -162,7 +170,9 @@ nlohmann::json path_to_json(const PathState& s)
           {"stability", std::isnan(s.stability) ? nlohmann::json(nullptr)
                                                 : nlohmann::json(s.stability)},
           {"negative_eigenvalues", s.negative_eigenvalues},
-          {"scene", s.scene}};
+          {"scene", s.scene},
+          {"vectors", vector_names(s)},
+          {"driver", s.driver}};
 }
 
 /// The path's scalars and scene from path_to_json (not the direction vector).
@@ -178,6 +188,7 @@ PathState path_from_json(const nlohmann::json& j)
   s.stability = j.at("stability").is_null() ? NAN : j.at("stability").get<double>();
   s.negative_eigenvalues = j.at("negative_eigenvalues");
   s.scene = j.at("scene");
+  s.driver = j.value("driver", nlohmann::json::object());
   return s;
 }
 
@@ -243,6 +254,8 @@ void Checkpoints::write(NonlinearSystem& system, const PathState& state,
   write_column(h5, "/history", history.get(), first, total, parallel);
   if (state.direction)
     write_column(h5, "/direction", state.direction.get(), first, total, parallel);
+  for (const auto& [name, v] : state.vectors)
+    write_column(h5, "/vector_" + name, v.get(), first, total, parallel);
   HDF5::close_file(h5); // collective: every rank's rows are written
 
   // 2. state.json last: the checkpoint is complete once it exists
@@ -334,6 +347,12 @@ PathState Checkpoints::read(MPI_Comm comm, const fs::path& checkpoint, Nonlinear
   {
     state.direction.reset(system.create_vector());
     read_column(h5, "/direction", rows, state.direction.get());
+  }
+  for (const std::string name : contents.at("path").value("vectors", nlohmann::json::array()))
+  {
+    OwnedVec v(system.create_vector());
+    read_column(h5, "/vector_" + name, rows, v.get());
+    state.vectors[name] = std::move(v);
   }
   HDF5::close_file(h5);
   return state;

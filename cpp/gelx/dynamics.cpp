@@ -25,35 +25,116 @@ double smooth_step(double t, double loading_time)
 
 nlohmann::json DynamicsSummary::to_json() const
 {
-  return {{"steps", steps},
-          {"rejected_steps", rejected_steps},
-          {"failed_solves", failed_solves},
-          {"time", time},
-          {"strain_energy", strain_energy},
-          {"kinetic_energy", kinetic_energy},
-          {"dissipated_energy", dissipated_energy},
-          {"dissipation_ratio", dissipation_ratio},
-          {"dissipation_bound", dissipation_bound},
-          {"kinetic_ratio", kinetic_ratio},
-          {"kinetic_bound", kinetic_bound},
-          {"quasi_static", quasi_static()},
-          {"verdict", quasi_static() ? "quasi-static" : "not quasi-static"}};
+  nlohmann::json j = {{"steps", steps},
+                      {"rejected_steps", rejected_steps},
+                      {"failed_solves", failed_solves},
+                      {"time", time},
+                      {"strain_energy", strain_energy},
+                      {"kinetic_energy", kinetic_energy},
+                      {"dissipated_energy", dissipated_energy},
+                      {"dissipation_ratio", dissipation_ratio},
+                      {"dissipation_bound", dissipation_bound},
+                      {"kinetic_ratio", kinetic_ratio},
+                      {"kinetic_bound", kinetic_bound},
+                      {"quasi_static", quasi_static()},
+                      {"verdict", quasi_static() ? "quasi-static" : "not quasi-static"}};
+  if (!std::isnan(external_work))
+    j.update({{"external_work", external_work}, {"balance_residual", balance_residual}});
+  return j;
 }
 
 nlohmann::json DynamicsRecord::to_json() const
 {
-  return {{"step", step.step},
-          {"time", time},
-          {"amplitude", step.load},
-          {"dt", step.step_size},
-          {"strain_energy", strain_energy},
-          {"kinetic_energy", kinetic_energy},
-          {"dissipated_energy", dissipated_energy},
-          {"kinetic_ratio", kinetic_ratio()},
-          {"dissipation_ratio", dissipation_ratio()},
-          {"iterations", step.newton.iterations},
-          {"rejected", step.cutbacks},
-          {"wall_time", step.wall_time}};
+  nlohmann::json j = {{"step", step.step},
+                      {"time", time},
+                      {"amplitude", step.load},
+                      {"dt", step.step_size},
+                      {"strain_energy", strain_energy},
+                      {"kinetic_energy", kinetic_energy},
+                      {"dissipated_energy", dissipated_energy},
+                      {"kinetic_ratio", kinetic_ratio()},
+                      {"dissipation_ratio", dissipation_ratio()},
+                      {"iterations", step.newton.iterations},
+                      {"rejected", step.cutbacks},
+                      {"wall_time", step.wall_time}};
+  if (!std::isnan(external_work))
+    j.update({{"external_work", external_work}, {"balance_residual", balance_residual}});
+  return j;
+}
+
+Mat assemble_system_mass(NonlinearSystem& system, const dolfinx::fem::Form<double>& mass_form,
+                         const std::string& who)
+{
+  // Assembled in the problem's tangent pattern, so that its restriction has the system
+  // tangent's pattern
+  Mat mass = system.problem().create_matrix();
+  GELX_PETSC(MatZeroEntries(mass));
+  dolfinx::fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(mass, ADD_VALUES),
+                                mass_form, {});
+  GELX_PETSC(MatAssemblyBegin(mass, MAT_FINAL_ASSEMBLY));
+  GELX_PETSC(MatAssemblyEnd(mass, MAT_FINAL_ASSEMBLY));
+  Mat restricted;
+  try
+  {
+    restricted = system.restrict_operator(mass);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    MatDestroy(&mass);
+    throw std::invalid_argument(who + ": " + e.what());
+  }
+  GELX_PETSC(MatDestroy(&mass));
+  return restricted;
+}
+
+Mat without_prescribed_rows(const NonlinearSystem& system, Mat A, double scale)
+{
+  Mat B;
+  GELX_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &B));
+  GELX_PETSC(MatScale(B, scale));
+  GELX_PETSC(MatSetOption(B, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
+  PetscInt first_row;
+  GELX_PETSC(MatGetOwnershipRange(B, &first_row, nullptr));
+  std::vector<PetscInt> rows = system.prescribed_rows();
+  for (PetscInt& r : rows)
+    r += first_row;
+  GELX_PETSC(MatZeroRows(B, PetscInt(rows.size()), rows.data(), 0.0, nullptr, nullptr));
+  return B;
+}
+
+double positive_option(const std::string& prefix, const std::string& name, double fallback,
+                       bool zero_allowed)
+{
+  const double value = real_option(prefix, name, fallback);
+  if (!(value > 0 || (zero_allowed && value == 0)))
+    throw InputError("-" + prefix + name + " must be "
+                     + (zero_allowed ? "non-negative" : "positive"));
+  return value;
+}
+
+double quadratic_form(Mat A, Vec v, Vec work)
+{
+  GELX_PETSC(MatMult(A, v, work));
+  PetscScalar value;
+  GELX_PETSC(VecDot(v, work, &value));
+  return value;
+}
+
+double stop_below_min_step(TS ts, double min_step)
+{
+  PetscReal t, t_previous;
+  GELX_PETSC(TSGetTime(ts, &t));
+  GELX_PETSC(TSGetPrevTime(ts, &t_previous));
+  if (t - t_previous >= min_step)
+    return 0;
+  GELX_PETSC(TSSetConvergedReason(ts, TS_DIVERGED_STEP_REJECTED));
+  return t - t_previous;
+}
+
+double wall_clock()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 namespace
@@ -87,24 +168,6 @@ PetscErrorCode post_step(TS ts)
   return guarded_callback(d.callback_error, [&] { d.check_step_size(); });
 }
 
-double positive_option(const std::string& prefix, const std::string& name, double fallback,
-                       bool zero_allowed = false)
-{
-  const double value = real_option(prefix, name, fallback);
-  if (!(value > 0 || (zero_allowed && value == 0)))
-    throw InputError("-" + prefix + name + " must be "
-                     + (zero_allowed ? "non-negative" : "positive"));
-  return value;
-}
-
-/// v^T A v. Collective.
-double quadratic_form(Mat A, Vec v, Vec work)
-{
-  GELX_PETSC(MatMult(A, v, work));
-  PetscScalar value;
-  GELX_PETSC(VecDot(v, work, &value));
-  return value;
-}
 } // namespace
 
 DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
@@ -121,36 +184,9 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
       _min_step(positive_option(prefix, "min_step", 1e-12 * _loading_time))
 {
   // M (for the energies), and c M_D: M with the prescribed rows zeroed (for F and J), both
-  // on the system's unknowns (P^T M P on a reduced space). The mass is assembled in the
-  // problem's tangent pattern, so that its restriction has the system tangent's pattern and
-  // J = K + shift c M_D adds entry by entry
-  {
-    Mat mass = system.problem().create_matrix();
-    GELX_PETSC(MatZeroEntries(mass));
-    dolfinx::fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(mass, ADD_VALUES),
-                                  mass_form, {});
-    GELX_PETSC(MatAssemblyBegin(mass, MAT_FINAL_ASSEMBLY));
-    GELX_PETSC(MatAssemblyEnd(mass, MAT_FINAL_ASSEMBLY));
-    try
-    {
-      _mass = system.restrict_operator(mass);
-    }
-    catch (const std::invalid_argument& e)
-    {
-      MatDestroy(&mass);
-      throw std::invalid_argument(std::string("DampedDynamics: ") + e.what());
-    }
-    GELX_PETSC(MatDestroy(&mass));
-  }
-  GELX_PETSC(MatDuplicate(_mass, MAT_COPY_VALUES, &_damped));
-  GELX_PETSC(MatScale(_damped, _damping));
-  GELX_PETSC(MatSetOption(_damped, MAT_KEEP_NONZERO_PATTERN, PETSC_TRUE));
-  PetscInt first_row;
-  GELX_PETSC(MatGetOwnershipRange(_damped, &first_row, nullptr));
-  std::vector<PetscInt> rows = system.prescribed_rows();
-  for (PetscInt& r : rows)
-    r += first_row;
-  GELX_PETSC(MatZeroRows(_damped, PetscInt(rows.size()), rows.data(), 0.0, nullptr, nullptr));
+  // on the system's unknowns, so that J = K + shift c M_D adds entry by entry
+  _mass = assemble_system_mass(system, mass_form, "DampedDynamics");
+  _damped = without_prescribed_rows(system, _mass, _damping);
   _jacobian = system.create_matrix();
   _velocity = system.create_vector();
   _work.reset(system.create_vector());
@@ -266,20 +302,8 @@ void DampedDynamics::velocity(double t, Vec u)
 
 void DampedDynamics::check_step_size()
 {
-  // Why a floor of our own: PETSc 3.18's TSAdapt retries a failed stage at a quarter of its
-  // step without any lower bound (-ts_adapt_dt_min only clamps the steps it proposes), and
-  // -ts_max_reject counts rejections in a row only. A state the flow drives to the edge of
-  // admissibility (an element's volume going to zero: the pre-compressed bistrip at nz = 60,
-  // measured) then has every other stage rejected and the others accepted at 1e-16 s, for
-  // ever. A step below min_step stops TS as a step it could not take
-  PetscReal t, t_previous;
-  GELX_PETSC(TSGetTime(_ts, &t));
-  GELX_PETSC(TSGetPrevTime(_ts, &t_previous));
-  if (t - t_previous < _min_step)
-  {
-    _too_small_step = t - t_previous;
-    GELX_PETSC(TSSetConvergedReason(_ts, TS_DIVERGED_STEP_REJECTED));
-  }
+  if (const double step = stop_below_min_step(_ts, _min_step); step > 0)
+    _too_small_step = step;
 }
 
 void DampedDynamics::accepted(int step, double t, Vec u)
@@ -307,15 +331,13 @@ void DampedDynamics::accepted(int step, double t, Vec u)
     GELX_PETSC(TSGetSNES(_ts, &snes));
     SNESConvergedReason reason;
     GELX_PETSC(SNESGetConvergedReason(snes, &reason));
-    const double now
-        = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-              .count();
+    const double now = wall_clock();
 
     DynamicsRecord record;
     record.step.step = step;
     record.step.load = smooth_step(t, _loading_time);
     record.step.step_size = dt;
-    record.step.newton.converged = true;
+    record.step.newton.converged = reason > 0;
     record.step.newton.iterations = snes_iterations - _snes_iterations;
     record.step.newton.linear_iterations = ksp_iterations - _ksp_iterations;
     record.step.newton.reason = SNESConvergedReasons[reason];
@@ -347,9 +369,7 @@ void DampedDynamics::accepted(int step, double t, Vec u)
       observe(record);
   }
   else
-    _wall_start
-        = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-              .count();
+    _wall_start = wall_clock();
   // Keep the last three accepted states, newest first (the oldest vector is reused)
   OwnedVec copy;
   if (_history.size() == 3)

@@ -6,6 +6,7 @@
 #include "path.h"
 #include "system.h"
 
+#include <cmath>
 #include <dolfinx/fem/Form.h>
 #include <exception>
 #include <functional>
@@ -24,6 +25,35 @@ namespace gelx
 /// the loading starts and stops without a jerk that would excite the body.
 double smooth_step(double t, double loading_time);
 
+// What first- and second-order dynamics (DampedDynamics, InertialDynamics) share
+
+/// The mass form assembled on `system`'s unknowns (a copy where they are the problem's dofs,
+/// P^T M P on a reduced space), in the pattern of system.create_matrix(), so that it adds to
+/// the tangent entry by entry. Throws std::invalid_argument, naming `who`, for a system with
+/// unknowns of its own (the arc-length's load). Collective.
+Mat assemble_system_mass(NonlinearSystem& system, const dolfinx::fem::Form<double>& mass_form,
+                         const std::string& who);
+/// A copy of `A` times `scale` with the system's prescribed rows zeroed (they keep the
+/// residual's u - g: algebraic equations of the time integration). Collective.
+Mat without_prescribed_rows(const NonlinearSystem& system, Mat A, double scale = 1);
+/// The real option -PREFIXname (or `fallback`), which must be positive (or non-negative):
+/// InputError otherwise.
+double positive_option(const std::string& prefix, const std::string& name, double fallback,
+                       bool zero_allowed = false);
+/// v^T A v (work: a vector of v's layout). Collective.
+double quadratic_form(Mat A, Vec v, Vec work);
+/// For a post-step hook: the step just accepted, if it is below `min_step`, and then TS is
+/// stopped as by a step it could not take (DIVERGED_STEP_REJECTED); 0 otherwise. Why a floor
+/// of gelx's own: PETSc 3.18's TSAdapt retries a failed stage at a quarter of its step
+/// without any lower bound (-ts_adapt_dt_min only clamps the steps it proposes), and
+/// -ts_max_reject counts rejections in a row only. A state driven to the edge of
+/// admissibility (an element's volume going to zero: the pre-compressed bistrip at nz = 60,
+/// measured) then has every other stage rejected and the others accepted at 1e-16 s, for
+/// ever.
+double stop_below_min_step(TS ts, double min_step);
+/// Seconds of a monotonic clock.
+double wall_clock();
+
 /// One accepted time step.
 struct DynamicsRecord
 {
@@ -33,15 +63,23 @@ struct DynamicsRecord
   StepRecord step;
   double time = 0;
   double strain_energy = 0;     ///< SE: the scene's stored energy (ABAQUS ALLSE)
-  double kinetic_energy = 0;    ///< KE = 1/2 v^T M v at the regularised velocity (ALLKE)
+  /// KE = 1/2 v^T M v (ALLKE): at the regularised velocity in DampedDynamics, of the
+  /// body's motion in InertialDynamics
+  double kinetic_energy = 0;
   /// ED = int c v^T M_D v dt, trapezoidal (ALLSD): the work of the viscous forces applied
   /// (M_D: M without the prescribed rows, whose motion the supports impose)
   double dissipated_energy = 0;
+  /// InertialDynamics only (NaN otherwise): W, the work of the supports on the body
+  /// (ALLWK), and the balance residual W - (SE - SE0) - (KE - KE0) - ED: the energy the time
+  /// integration dissipated (ALLNUM-like: generalised-alpha's numerical damping) plus its
+  /// error
+  double external_work = NAN;
+  double balance_residual = NAN;
   /// KE / SE and ED / SE (NaN while SE = 0)
   double kinetic_ratio() const { return kinetic_energy / strain_energy; }
   double dissipation_ratio() const { return dissipated_energy / strain_energy; }
-  /// A row of steps.csv: step, time, amplitude, dt, the energies and ratios, iterations,
-  /// rejected steps, wall time.
+  /// A row of steps.csv: step, time, amplitude, dt, the energies and ratios (and the work
+  /// and balance residual where they are known), iterations, rejected steps, wall time.
   nlohmann::json to_json() const;
 };
 
@@ -57,6 +95,8 @@ struct DynamicsSummary
   double strain_energy = 0;
   double kinetic_energy = 0;
   double dissipated_energy = 0;
+  double external_work = NAN;    ///< InertialDynamics only, as in DynamicsRecord
+  double balance_residual = NAN; ///< InertialDynamics only, as in DynamicsRecord
   /// ED / SE at the end, against its bound
   double dissipation_ratio = 0, dissipation_bound = 0;
   /// The largest KE / SE over the steps (with SE > 0), against its bound

@@ -6,7 +6,9 @@
 #include "newton.h"
 #include <cmath>
 #include <functional>
+#include <map>
 #include <memory>
+#include <string>
 #include <nlohmann/json.hpp>
 #include <petscvec.h>
 #include <stdexcept>
@@ -47,6 +49,11 @@ struct PathState
   /// What the scene accumulates along the path (curves for fits, extrema): its observers keep
   /// it here so that a restart continues it
   nlohmann::json scene = nlohmann::json::object();
+  /// A driver's own state beyond the scalars above, in the unknowns' layout (dynamics: the
+  /// velocity, the acceleration, the previous step's state) and as numbers (its energy
+  /// accounts): a checkpoint stores both, so that the driver continues exactly
+  std::map<std::string, OwnedVec> vectors;
+  nlohmann::json driver = nlohmann::json::object();
 };
 
 /// One completed step.

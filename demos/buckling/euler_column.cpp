@@ -39,6 +39,8 @@ void ColumnParameters::bind(Parameters& prm)
 
 void ColumnParameters::check() const
 {
+  if (law != "neo_hookean" && law != "linear_elastic")
+    throw InputError("the column's law must be neo_hookean or linear_elastic");
   if (ty <= tx)
     throw InputError("the depth ty must exceed the width tx, so that the column buckles in x");
 }
@@ -84,7 +86,8 @@ EulerColumn::EulerColumn(MPI_Comm comm, ColumnParameters p)
   }
   _bcs->update(0);
   _problem = std::make_unique<NonlinearProblem>(
-      _u, form(form_column_residual, {V}), form(form_column_tangent, {V, V}), _bcs->bcs(),
+      _u, form(linear() ? form_column_residual_linear : form_column_residual, {V}),
+      form(linear() ? form_column_tangent_linear : form_column_tangent, {V, V}), _bcs->bcs(),
       std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
           *expression_column_det_F, {{"u", _u}}, _constants, _box.mesh)));
 }
@@ -176,7 +179,8 @@ std::shared_ptr<fem::Form<double>> EulerColumn::mass_form() const
 
 double EulerColumn::strain_energy() const
 {
-  return assemble_global_scalar(*form(form_column_strain_energy, {}));
+  return assemble_global_scalar(
+      *form(linear() ? form_column_strain_energy_linear : form_column_strain_energy, {}));
 }
 
 double EulerColumn::lateral_deflection() const

@@ -41,6 +41,10 @@ struct ColumnParameters
   /// as a small imperfection: the straight path bends over at P_cr. Either end is clamped
   /// against rotation.
   std::string base = "clamped";
+  /// "neo_hookean" (Eq. 3.1) or "linear_elastic" (small strain, the same G and nu: a linear
+  /// problem, for the tests of time integrators; the scene's stress and energy-density
+  /// fields are neo-Hookean's, so it is not a scene parameter)
+  std::string law = "neo_hookean";
   bool clamped_clamped() const { return ends == "clamped-clamped"; }
   /// Bind the members but rho to scene parameters (sections "geometry" and "material"), the
   /// current values as their defaults.
@@ -113,6 +117,7 @@ public:
       std::shared_ptr<const dolfinx::fem::Function<double>> mode) const;
 
 private:
+  bool linear() const { return _p.law == "linear_elastic"; }
   std::shared_ptr<dolfinx::fem::Form<double>>
   form(ufcx_form* f, std::vector<std::shared_ptr<const dolfinx::fem::FunctionSpace>> spaces,
        std::shared_ptr<const dolfinx::fem::Function<double>> mode = nullptr) const;

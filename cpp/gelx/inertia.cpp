@@ -1,0 +1,552 @@
+#include "inertia.h"
+#include "mixed.h"
+#include "parameters.h"
+#include "petsc_utils.h"
+#include "problem.h"
+
+#include <cmath>
+#include <petsc/private/tsimpl.h>
+#include <sstream>
+
+namespace gelx
+{
+namespace
+{
+/// PETSc 3.18's TSALPHA2 state, the struct TS_Alpha of src/ts/impls/implicit/alpha/alpha2.c,
+/// which PETSc keeps private (InertialDynamics' class comment says why gelx reads and writes
+/// it). Only the layout is repeated here, none of PETSc's code.
+struct Alpha2State
+{
+  PetscReal stage_time, shift_V, shift_A, scale_F;
+  Vec X0, Xa, X1;
+  Vec V0, Va, V1;
+  Vec A0, Aa, A1;
+  Vec vec_dot;
+  PetscReal Alpha_m, Alpha_f, Gamma, Beta;
+  PetscInt order;
+  Vec vec_sol_prev, vec_dot_prev;
+  Vec vec_lte_work[2];
+  TSStepStatus status;
+};
+
+/// TS's TSALPHA2 state, after TSSetUp; throws unless its layout is PETSc 3.18's: its
+/// parameters equal TSAlpha2GetParams' and its vectors are vectors of the solution's size.
+Alpha2State& alpha2_state(TS ts)
+{
+  auto* state = static_cast<Alpha2State*>(ts->data);
+  PetscReal alpha_m, alpha_f, gamma, beta;
+  GELX_PETSC(TSAlpha2GetParams(ts, &alpha_m, &alpha_f, &gamma, &beta));
+  bool same = state->Alpha_m == alpha_m && state->Alpha_f == alpha_f && state->Gamma == gamma
+              && state->Beta == beta;
+  PetscInt n = 0;
+  GELX_PETSC(VecGetLocalSize(ts->vec_sol, &n));
+  for (Vec v : {state->X0, state->X1, state->V0, state->V1, state->A0, state->A1})
+  {
+    if (!same)
+      break;
+    PetscInt m = -1;
+    same = v && reinterpret_cast<PetscObject>(v)->classid == VEC_CLASSID
+           && VecGetLocalSize(v, &m) == 0 && m == n;
+  }
+  if (!same)
+    throw std::runtime_error("this PETSc's TSALPHA2 keeps its state in another layout than "
+                             "PETSc 3.18's: gelx cannot restart or read its acceleration");
+  return *state;
+}
+
+InertialDynamics& dynamics_of(void* ctx) { return *static_cast<InertialDynamics*>(ctx); }
+
+PetscErrorCode form_function(TS, PetscReal t, Vec u, Vec v, Vec a, Vec F, void* ctx)
+{
+  InertialDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.form_function(t, u, v, a, F); });
+}
+
+PetscErrorCode form_jacobian(TS, PetscReal t, Vec u, Vec, Vec, PetscReal shift_v,
+                             PetscReal shift_a, Mat, Mat P, void* ctx)
+{
+  InertialDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.form_jacobian(t, u, shift_v, shift_a, P); });
+}
+
+PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec u, void* ctx)
+{
+  InertialDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.accepted(int(step), t, u); });
+}
+
+PetscErrorCode pre_step(TS ts)
+{
+  void* ctx;
+  PetscCall(TSGetApplicationContext(ts, &ctx));
+  InertialDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.pre_step(); });
+}
+
+PetscErrorCode pre_stage(TS ts, PetscReal)
+{
+  void* ctx;
+  PetscCall(TSGetApplicationContext(ts, &ctx));
+  InertialDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.pre_stage(); });
+}
+
+PetscErrorCode post_step(TS ts)
+{
+  void* ctx;
+  PetscCall(TSGetApplicationContext(ts, &ctx));
+  InertialDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.check_step_size(); });
+}
+
+std::string number(double v)
+{
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+OwnedVec copy_of(Vec v)
+{
+  Vec c;
+  GELX_PETSC(VecDuplicate(v, &c));
+  GELX_PETSC(VecCopy(v, c));
+  return OwnedVec(c);
+}
+} // namespace
+
+InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
+                                   const dolfinx::fem::Form<double>& mass_form,
+                                   std::function<double()> strain_energy,
+                                   std::function<void(double)> apply_load,
+                                   const std::string& prefix)
+    : _comm(comm), _system(system), _strain_energy(std::move(strain_energy)),
+      _apply_load(std::move(apply_load)), _prefix(prefix),
+      _loading_time(positive_option(prefix, "loading_time", 1.0)),
+      _hold_time(positive_option(prefix, "hold_time", 0.0, true)),
+      _kinetic_bound(positive_option(prefix, "kinetic_bound", 0.05)),
+      _min_step(positive_option(prefix, "min_step", 1e-12 * _loading_time)),
+      _has_reactions(&system == &system.problem())
+{
+  const double a = positive_option(prefix, "rayleigh_mass", 0.0, true);
+  const double b = positive_option(prefix, "rayleigh_stiffness", 0.0, true);
+  _mass = assemble_system_mass(system, mass_form, "InertialDynamics");
+  _mass_D = without_prescribed_rows(system, _mass);
+  PetscInt first_row;
+  GELX_PETSC(MatGetOwnershipRange(_mass, &first_row, nullptr));
+  _prescribed = system.prescribed_rows();
+  if (a > 0 || b > 0)
+  {
+    // C = a M + b K0, K0 the tangent at the initial state with the prescribed rows and
+    // columns zeroed (the tangent's identity there is no stiffness): a symmetric C whose
+    // power v^T C v is the dissipation of the forces C v it applies
+    GELX_PETSC(MatDuplicate(_mass, MAT_COPY_VALUES, &_damping));
+    GELX_PETSC(MatScale(_damping, a));
+    if (b > 0)
+    {
+      Mat K0 = system.create_matrix();
+      _apply_load(0.0);
+      system.unknowns_changed();
+      system.tangent(K0);
+      std::vector<PetscInt> rows = _prescribed;
+      for (PetscInt& r : rows)
+        r += first_row;
+      GELX_PETSC(MatZeroRowsColumns(K0, PetscInt(rows.size()), rows.data(), 0.0, nullptr,
+                                    nullptr));
+      GELX_PETSC(MatAXPY(_damping, b, K0, SUBSET_NONZERO_PATTERN));
+      GELX_PETSC(MatDestroy(&K0));
+    }
+    _damping_D = without_prescribed_rows(system, _damping);
+  }
+  _jacobian = system.create_matrix();
+  _initial_velocity.reset(system.create_vector());
+  GELX_PETSC(VecSet(_initial_velocity.get(), 0.0));
+  _work.reset(system.create_vector());
+  _mean_velocity.reset(system.create_vector());
+  _reaction.reset(system.create_vector());
+  _previous_reaction.reset(system.create_vector());
+  _du.reset(system.create_vector());
+
+  // Defaults (the user's options win), then TS, SNES and KSP from the options database
+  set_default_option(prefix, "ts_type", "alpha2");
+  set_default_option(prefix, "ts_adapt_type", "basic");
+  set_default_option(prefix, "ts_adapt_dt_max", number(_loading_time / 10));
+  set_default_option(prefix, "ts_dt", number(real_option(prefix, "dt", _loading_time / 100)));
+  set_default_option(prefix, "ts_max_time", number(_loading_time + _hold_time));
+  set_default_option(prefix, "ts_exact_final_time", "matchstep");
+  set_default_option(prefix, "ts_max_snes_failures", "-1");
+  set_default_option(prefix, "ts_max_reject", "20");
+  set_default_option(prefix, "ts_max_steps", "100000");
+  set_default_option(prefix, "snes_linesearch_type", "basic");
+  set_default_option(prefix, "snes_max_it", "10");
+  set_linear_solver_defaults(prefix);
+
+  GELX_PETSC(TSCreate(comm, &_ts));
+  GELX_PETSC(TSSetOptionsPrefix(_ts, prefix.c_str()));
+  GELX_PETSC(TSSetProblemType(_ts, TS_NONLINEAR));
+  GELX_PETSC(TSSetType(_ts, TSALPHA2));
+  Vec r = system.create_vector();
+  GELX_PETSC(TSSetI2Function(_ts, r, gelx::form_function, this));
+  GELX_PETSC(VecDestroy(&r));
+  GELX_PETSC(TSSetI2Jacobian(_ts, _jacobian, _jacobian, gelx::form_jacobian, this));
+  GELX_PETSC(TSMonitorSet(_ts, monitor, this, nullptr));
+  GELX_PETSC(TSSetApplicationContext(_ts, this));
+  GELX_PETSC(TSSetPreStep(_ts, gelx::pre_step));
+  GELX_PETSC(TSSetPreStage(_ts, gelx::pre_stage));
+  GELX_PETSC(TSSetPostStep(_ts, post_step));
+  GELX_PETSC(TSSetFromOptions(_ts));
+  PetscBool alpha2;
+  GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSALPHA2, &alpha2));
+  if (!alpha2)
+    throw InputError("-" + prefix + "ts_type must be alpha2 (the second-order integrator "
+                     "whose state gelx saves)");
+  SNES snes;
+  GELX_PETSC(TSGetSNES(_ts, &snes));
+  KSP ksp;
+  GELX_PETSC(SNESGetKSP(snes, &ksp));
+  define_fields_if_split(ksp, system);
+  // A step TS cannot take ends TSSolve with a negative reason, reported by run()
+  GELX_PETSC(TSSetErrorIfStepFails(_ts, PETSC_FALSE));
+}
+
+InertialDynamics::~InertialDynamics()
+{
+  TSDestroy(&_ts);
+  for (Mat* A : {&_mass, &_mass_D, &_damping, &_damping_D, &_jacobian})
+    MatDestroy(A);
+}
+
+void InertialDynamics::set_initial_velocity(Vec v)
+{
+  GELX_PETSC(VecCopy(v, _initial_velocity.get()));
+}
+
+void InertialDynamics::set_time(double t) { _apply_load(smooth_step(t, _loading_time)); }
+
+void InertialDynamics::form_function(double t, Vec u, Vec v, Vec a, Vec F)
+{
+  set_time(t);
+  _system.set_state(u);
+  if (!_system.admissible())
+  {
+    SNES snes;
+    GELX_PETSC(TSGetSNES(_ts, &snes));
+    GELX_PETSC(SNESSetFunctionDomainError(snes)); // the stage fails; TS cuts the step
+    return;
+  }
+  _system.residual(F);
+  GELX_PETSC(MatMultAdd(_mass_D, a, F, F));
+  if (_damping_D)
+    GELX_PETSC(MatMultAdd(_damping_D, v, F, F));
+}
+
+void InertialDynamics::form_jacobian(double t, Vec u, double shift_v, double shift_a, Mat P)
+{
+  set_time(t);
+  _system.set_state(u);
+  _system.tangent(P);
+  GELX_PETSC(MatAXPY(P, shift_a, _mass_D, SAME_NONZERO_PATTERN));
+  if (_damping_D)
+    GELX_PETSC(MatAXPY(P, shift_v, _damping_D, SAME_NONZERO_PATTERN));
+}
+
+void InertialDynamics::reactions(Vec u, Vec v, Vec a, Vec r)
+{
+  _system.set_state(u);
+  _system.problem().internal_forces(r);
+  GELX_PETSC(MatMultAdd(_mass, a, r, r));
+  if (_damping)
+    GELX_PETSC(MatMultAdd(_damping, v, r, r));
+  // Only the prescribed rows: the free rows' residual is the solve's, not a force
+  PetscScalar* values;
+  PetscInt n;
+  GELX_PETSC(VecGetLocalSize(r, &n));
+  std::vector<double> kept(_prescribed.size());
+  GELX_PETSC(VecGetArray(r, &values));
+  for (std::size_t i = 0; i < _prescribed.size(); ++i)
+    kept[i] = values[_prescribed[i]];
+  std::fill(values, values + n, 0.0);
+  for (std::size_t i = 0; i < _prescribed.size(); ++i)
+    values[_prescribed[i]] = kept[i];
+  GELX_PETSC(VecRestoreArray(r, &values));
+}
+
+void InertialDynamics::pre_step()
+{
+  // A resumed run continues from the state save() wrote: TSALPHA2 must not compute a new
+  // start (TSAlpha_Restart) but take it
+  if (_resuming)
+  {
+    _ts->steprestart = PETSC_FALSE;
+    _resuming = false;
+  }
+}
+
+void InertialDynamics::pre_stage()
+{
+  // The first step's stages: TSALPHA2 has started the run (TSAlpha_Restart) with an
+  // acceleration of its own, a backward difference of the velocities of two backward-Euler
+  // half steps: first-order, and off by as much as the acceleration itself (measured on the
+  // cantilever released at u = 0 with omega v0 = 3e-9: |a0| = 7.0e-9 where the equation of
+  // motion gives 0). Its half steps run with the parameters (1, 1, 1, 1/2); the step itself
+  // starts from the consistent acceleration instead, solved from the equation of motion at
+  // t = 0. (With rho_inf = 1, the trapezoidal rule, u and v do not depend on the
+  // acceleration: alpha_m = 1/2 and beta = 1/4 cancel it from the stage equation; with
+  // rho_inf < 1 they do.)
+  PetscReal alpha_m, alpha_f, gamma, beta;
+  GELX_PETSC(TSAlpha2GetParams(_ts, &alpha_m, &alpha_f, &gamma, &beta));
+  if (!_initial_acceleration)
+    return;
+  if (alpha_m == 1 && alpha_f == 1 && gamma == 1 && beta == 0.5)
+    return;
+  Alpha2State& alpha = alpha2_state(_ts);
+  GELX_PETSC(VecCopy(_initial_acceleration.get(), alpha.A0));
+}
+
+void InertialDynamics::check_step_size()
+{
+  if (const double step = stop_below_min_step(_ts, _min_step); step > 0)
+    _too_small_step = step;
+}
+
+void InertialDynamics::accepted(int step, double t, Vec u)
+{
+  if (_skip_first_monitor)
+  {
+    // TSSolve's first call: the state the run starts from, recorded already
+    _skip_first_monitor = false;
+    _wall_start = wall_clock();
+    return;
+  }
+  _initial_acceleration.reset(); // the first step is taken
+  const Alpha2State& alpha = alpha2_state(_ts);
+  Vec v = _ts->vec_dot;
+  PetscReal t_previous;
+  GELX_PETSC(TSGetPrevTime(_ts, &t_previous));
+  const double dt = t - t_previous;
+
+  // The supports' work over the step: the reactions at its start (kept from the last step,
+  // computed at the first) and at its end
+  if (_has_reactions)
+  {
+    if (!_have_previous_reaction)
+    {
+      set_time(t_previous);
+      reactions(alpha.X0, alpha.V0, alpha.A0, _previous_reaction.get());
+      _have_previous_reaction = true;
+    }
+    set_time(t);
+    reactions(u, v, alpha.A1, _reaction.get());
+    GELX_PETSC(VecWAXPY(_du.get(), -1.0, alpha.X0, u));
+    GELX_PETSC(VecAXPY(_reaction.get(), 1.0, _previous_reaction.get()));
+    PetscScalar work;
+    GELX_PETSC(VecDot(_reaction.get(), _du.get(), &work));
+    _summary.external_work += 0.5 * work;
+    // _reaction now holds r_n-1 + r_n: keep r_n for the next step
+    GELX_PETSC(VecAXPY(_reaction.get(), -1.0, _previous_reaction.get()));
+    std::swap(_reaction, _previous_reaction);
+  }
+  set_time(t);
+  _system.set_state(u);
+  _system.commit();
+  if (_damping)
+  {
+    GELX_PETSC(VecAXPBYPCZ(_mean_velocity.get(), 0.5, 0.5, 0.0, v, alpha.V0));
+    _summary.dissipated_energy += dt * quadratic_form(_damping, _mean_velocity.get(), _work.get());
+  }
+
+  PetscInt snes_iterations, ksp_iterations, rejections, failed_solves;
+  GELX_PETSC(TSGetSNESIterations(_ts, &snes_iterations));
+  GELX_PETSC(TSGetKSPIterations(_ts, &ksp_iterations));
+  GELX_PETSC(TSGetStepRejections(_ts, &rejections));
+  GELX_PETSC(TSGetSNESFailures(_ts, &failed_solves));
+  SNES snes;
+  GELX_PETSC(TSGetSNES(_ts, &snes));
+  SNESConvergedReason reason;
+  GELX_PETSC(SNESGetConvergedReason(snes, &reason));
+  const double now = wall_clock();
+
+  DynamicsRecord record;
+  record.step.step = step;
+  record.step.load = smooth_step(t, _loading_time);
+  record.step.step_size = dt;
+  record.step.newton.converged = reason > 0;
+  record.step.newton.iterations = snes_iterations - _snes_iterations;
+  record.step.newton.linear_iterations = ksp_iterations - _ksp_iterations;
+  record.step.newton.reason = SNESConvergedReasons[reason];
+  record.step.cutbacks = rejections - _rejections;
+  record.step.wall_time = now - _wall_start;
+  record.time = t;
+  record.strain_energy = _strain_energy();
+  record.kinetic_energy = 0.5 * quadratic_form(_mass, v, _work.get());
+  record.dissipated_energy = _summary.dissipated_energy;
+  if (_has_reactions)
+  {
+    record.external_work = _summary.external_work;
+    record.balance_residual = record.external_work - (record.strain_energy - _strain_energy0)
+                              - (record.kinetic_energy - _kinetic_energy0)
+                              - record.dissipated_energy;
+  }
+  _snes_iterations = snes_iterations;
+  _ksp_iterations = ksp_iterations;
+  _rejections = rejections;
+  _wall_start = now;
+
+  _summary.steps = step;
+  _summary.rejected_steps += record.step.cutbacks;
+  _summary.failed_solves = failed_solves;
+  _summary.time = t;
+  _summary.strain_energy = record.strain_energy;
+  _summary.kinetic_energy = record.kinetic_energy;
+  _summary.balance_residual = record.balance_residual;
+  _summary.dissipation_ratio = record.dissipation_ratio();
+  if (record.strain_energy > 0)
+    _summary.kinetic_ratio = std::max(_summary.kinetic_ratio, record.kinetic_ratio());
+  for (const auto& observe : *_observers)
+    observe(record);
+}
+
+OwnedVec InertialDynamics::consistent_acceleration(Vec v)
+{
+  // M_D a = -(R(u) + C_D v) in the free rows, a = 0 in the prescribed ones (the smooth step
+  // starts without acceleration): M_D with the identity in the prescribed rows
+  OwnedVec a(_system.create_vector()), rhs(_system.create_vector());
+  _system.residual(rhs.get());
+  if (_damping_D)
+    GELX_PETSC(MatMultAdd(_damping_D, v, rhs.get(), rhs.get()));
+  GELX_PETSC(VecScale(rhs.get(), -1.0));
+  PetscInt first_row;
+  GELX_PETSC(MatGetOwnershipRange(_mass, &first_row, nullptr));
+  std::vector<PetscInt> rows = _prescribed;
+  for (PetscInt& r : rows)
+    r += first_row;
+  Mat M;
+  GELX_PETSC(MatDuplicate(_mass_D, MAT_COPY_VALUES, &M));
+  GELX_PETSC(MatZeroRows(M, PetscInt(rows.size()), rows.data(), 1.0, nullptr, nullptr));
+  PetscScalar* values;
+  GELX_PETSC(VecGetArray(rhs.get(), &values));
+  for (PetscInt r : _prescribed)
+    values[r] = 0;
+  GELX_PETSC(VecRestoreArray(rhs.get(), &values));
+  set_default_option(_prefix + "mass_", "ksp_type", "preonly");
+  set_default_option(_prefix + "mass_", "pc_type", "lu");
+  set_default_option(_prefix + "mass_", "pc_factor_mat_solver_type", "mumps");
+  KSP ksp;
+  GELX_PETSC(KSPCreate(_comm, &ksp));
+  GELX_PETSC(KSPSetOptionsPrefix(ksp, (_prefix + "mass_").c_str()));
+  GELX_PETSC(KSPSetOperators(ksp, M, M));
+  GELX_PETSC(KSPSetFromOptions(ksp));
+  const PetscErrorCode ierr = KSPSolve(ksp, rhs.get(), a.get());
+  KSPDestroy(&ksp);
+  MatDestroy(&M);
+  GELX_PETSC(ierr);
+  return a;
+}
+
+Vec InertialDynamics::velocity() const { return _ts->vec_dot; }
+Vec InertialDynamics::acceleration() const { return alpha2_state(_ts).A1; }
+
+void InertialDynamics::save(PathState& state) const
+{
+  const Alpha2State& alpha = alpha2_state(_ts);
+  PetscInt step;
+  PetscReal t, t_previous, dt;
+  GELX_PETSC(TSGetStepNumber(_ts, &step));
+  GELX_PETSC(TSGetTime(_ts, &t));
+  GELX_PETSC(TSGetPrevTime(_ts, &t_previous));
+  GELX_PETSC(TSGetTimeStep(_ts, &dt));
+  state.step = step;
+  state.load = t;
+  state.step_size = dt;
+  state.vectors["velocity"] = copy_of(_ts->vec_dot);
+  state.vectors["acceleration"] = copy_of(alpha.A1);
+  state.vectors["previous_unknowns"] = copy_of(alpha.X0);
+  state.vectors["previous_velocity"] = copy_of(alpha.V0);
+  state.driver = {{"previous_time", t_previous},
+                  {"strain_energy0", _strain_energy0},
+                  {"kinetic_energy0", _kinetic_energy0},
+                  {"dissipated_energy", _summary.dissipated_energy},
+                  {"external_work", _summary.external_work},
+                  {"kinetic_ratio", _summary.kinetic_ratio},
+                  {"rejected_steps", _summary.rejected_steps}};
+}
+
+DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& observers,
+                                      const PathState* resume)
+{
+  _observers = &observers;
+  _summary = DynamicsSummary{};
+  _summary.dissipation_bound = INFINITY; // no quasi-static criterion of real inertia
+  _summary.kinetic_bound = _kinetic_bound;
+  _summary.external_work = _has_reactions ? 0.0 : NAN;
+  _snes_iterations = _ksp_iterations = _rejections = 0;
+  _have_previous_reaction = false;
+  callback_error = nullptr;
+  _too_small_step = 0;
+
+  OwnedVec u = copy_of(_system.unknowns());
+  OwnedVec v = copy_of(resume ? resume->vectors.at("velocity").get() : _initial_velocity.get());
+  GELX_PETSC(TS2SetSolution(_ts, u.get(), v.get()));
+  GELX_PETSC(TSSetUp(_ts));
+  Alpha2State& alpha = alpha2_state(_ts);
+  if (resume)
+  {
+    GELX_PETSC(VecCopy(resume->vectors.at("previous_unknowns").get(), alpha.X0));
+    GELX_PETSC(VecCopy(resume->vectors.at("previous_velocity").get(), alpha.V0));
+    GELX_PETSC(VecCopy(resume->vectors.at("acceleration").get(), alpha.A1));
+    GELX_PETSC(TSSetTime(_ts, resume->load));
+    GELX_PETSC(TSSetStepNumber(_ts, resume->step));
+    GELX_PETSC(TSSetTimeStep(_ts, resume->step_size));
+    _ts->ptime_prev = resume->driver.at("previous_time");
+    _strain_energy0 = resume->driver.at("strain_energy0");
+    _kinetic_energy0 = resume->driver.at("kinetic_energy0");
+    _summary.dissipated_energy = resume->driver.at("dissipated_energy");
+    _summary.kinetic_ratio = resume->driver.at("kinetic_ratio");
+    _summary.rejected_steps = resume->driver.at("rejected_steps");
+    if (_has_reactions)
+      _summary.external_work = resume->driver.at("external_work");
+    _resuming = true;
+    _initial_acceleration.reset();
+  }
+  else
+  {
+    GELX_PETSC(TSSetTime(_ts, 0.0));
+    GELX_PETSC(TSSetStepNumber(_ts, 0));
+    GELX_PETSC(TSSetTimeStep(_ts, real_option(_prefix, "ts_dt", _loading_time / 100)));
+    set_time(0.0);
+    _system.set_state(u.get());
+    _strain_energy0 = _strain_energy();
+    _kinetic_energy0 = 0.5 * quadratic_form(_mass, v.get(), _work.get());
+    _resuming = false;
+    _initial_acceleration = consistent_acceleration(v.get());
+  }
+  _skip_first_monitor = true;
+  const PetscErrorCode ierr = TSSolve(_ts, u.get());
+  _observers = nullptr;
+  _resuming = false;
+  if (callback_error)
+    std::rethrow_exception(callback_error);
+  GELX_PETSC(ierr);
+  TSConvergedReason reason;
+  GELX_PETSC(TSGetConvergedReason(_ts, &reason));
+  // The last accepted state (a failed step is rolled back)
+  PetscReal t, end_time;
+  GELX_PETSC(TSGetTime(_ts, &t));
+  GELX_PETSC(TSGetMaxTime(_ts, &end_time));
+  set_time(t);
+  _system.set_state(_ts->vec_sol);
+  if (reason < 0 || t < end_time * (1 - 1e-12))
+  {
+    std::ostringstream what;
+    what << "inertial dynamics stopped at t = " << t << " of " << end_time << ": "
+         << TSConvergedReasons[reason];
+    if (_too_small_step > 0)
+      what << " (a step of " << _too_small_step << ", below -" << _prefix << "min_step "
+           << _min_step << ": the path runs into states it cannot take)";
+    throw ConvergenceError(what.str());
+  }
+  return _summary;
+}
+
+} // namespace gelx

@@ -17,18 +17,21 @@
 //  3. a large-amplitude (nonlinear) vibration's energy error after one period falling as
 //     dt^2 over three step sizes;
 //  4. with rho_inf = 0.5 at omega_h dt = 1, the energy's decay per step against the spectral
-//     radius of generalised-alpha's amplification matrix for omega_h dt (computed here), and
-//     the energy balance's residual equal to the energy lost;
-//  5. Rayleigh mass damping a M: the energy decays as exp(-a t) (a lightly damped mode) and
-//     the balance W = SE + KE + ED holds;
-//  6. restart: the run saved at step 25 and continued in a new integrator from the saved
-//     state ends equal to the uninterrupted run at step 60 (u, v to 1e-10 of their size).
+//     radius of generalised-alpha's amplification matrix for omega_h dt (computed here) and
+//     the modal equation's generalised-alpha solution;
+//  5. Rayleigh mass damping a M: the energy against the damped oscillator's and its
+//     generalised-alpha solution, and the balance W = SE + KE + ED;
+//  6. restart: a run checkpointed at step 25 and continued in a new integrator from the
+//     checkpoint ends equal to the uninterrupted run (u, v to 1e-10 of their size); the same
+//     restart without its acceleration differs;
+//  7. fixed steps come back after a stage that failed.
 //
 // Usage: test_inertial_dynamics [PETSc options]
 
 #include "euler_column.h"
 #include "support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -113,6 +116,7 @@ struct Sample
 struct Vibration
 {
   std::vector<Sample> samples;
+  std::vector<double> steps; ///< the step sizes taken
   gelx::OwnedVec u, v;
 };
 
@@ -133,28 +137,9 @@ Cantilever cantilever(MPI_Comm comm, std::array<int, 3> cells,
   c.p.cells = cells;
   c.p.law = law;
   c.column = std::make_unique<EulerColumn>(comm, c.p);
-  gelx::NonlinearProblem& problem = c.column->problem();
-  // K phi = omega^2 M phi as LinearBuckling's -K_D v = theta K v with K_D = -M (theta =
-  // 1 / omega^2, the largest first), M without the clamped rows and columns
-  Mat K = problem.create_matrix();
-  Mat M = gelx::assemble_system_mass(problem, *c.column->mass_form(), "test");
-  problem.tangent(K);
-  PetscInt first;
-  MatGetOwnershipRange(M, &first, nullptr);
-  std::vector<PetscInt> rows = problem.prescribed_rows();
-  for (PetscInt& r : rows)
-    r += first;
-  MatZeroRowsColumns(M, PetscInt(rows.size()), rows.data(), 0.0, nullptr, nullptr);
-  Mat K_minus_M;
-  MatDuplicate(K, MAT_COPY_VALUES, &K_minus_M);
-  MatAXPY(K_minus_M, -1.0, M, SUBSET_NONZERO_PATTERN);
-  gelx::LinearBuckling eigen(comm, "vibration_");
-  auto modes = eigen.solve(K, K_minus_M, 1, problem.u()->function_space());
+  auto modes = gelx::vibration_modes(comm, c.column->problem(), *c.column->mass_form(), 1);
   c.omega = std::sqrt(modes[0].load_factor);
   c.mode = modes[0].shape;
-  MatDestroy(&K);
-  MatDestroy(&M);
-  MatDestroy(&K_minus_M);
   return c;
 }
 
@@ -165,12 +150,26 @@ std::string real(double v)
   return text;
 }
 
+/// A system that declares one state inadmissible, the `at`-th it is asked about (as if
+/// det F <= 0 there), and is otherwise `inner`: the stage fails and TS retries it smaller
+class InadmissibleOnce : public gelx::SystemDecorator
+{
+public:
+  InadmissibleOnce(gelx::NonlinearSystem& inner, int at) : SystemDecorator(inner), _at(at) {}
+  bool admissible() const override { return ++_asked != _at && _inner.admissible(); }
+
+private:
+  int _at;
+  mutable int _asked = 0;
+};
+
 /// What a run does besides vibrating
 struct RunOptions
 {
   int save_at = 0;                           ///< checkpoint the state after this step ...
   gelx::Checkpoints* checkpoints = nullptr;  ///< ... here
   const gelx::PathState* resume = nullptr;   ///< continue from this state
+  int inadmissible_at = 0; ///< declare the state of this residual evaluation inadmissible
 };
 
 /// Run the cantilever from rest in the undeformed state with the initial velocity
@@ -196,7 +195,8 @@ Vibration vibrate(Cantilever& c, double amplitude, int steps, double dt, const s
     VecSet(problem.unknowns(), 0.0);
     problem.unknowns_changed();
   }
-  gelx::InertialDynamics dynamics(column.mesh().mesh->comm(), problem, *column.mass_form(),
+  InadmissibleOnce system(problem, o.inadmissible_at);
+  gelx::InertialDynamics dynamics(column.mesh().mesh->comm(), system, *column.mass_form(),
                                   [&] { return column.strain_energy(); }, [](double) {},
                                   prefix);
   gelx::OwnedVec mode(dolfinx::la::petsc::create_vector_wrap(*c.mode->x()));
@@ -215,6 +215,7 @@ Vibration vibrate(Cantilever& c, double amplitude, int steps, double dt, const s
   }
   dynamics.run({[&](const gelx::DynamicsRecord& r)
                 {
+                  run.steps.push_back(r.step.step_size);
                   run.samples.push_back({r.time, column.tip_deflection()[0] * c.p.L,
                                          r.strain_energy + r.kinetic_energy, r.external_work,
                                          r.dissipated_energy, r.balance_residual});
@@ -222,7 +223,7 @@ Vibration vibrate(Cantilever& c, double amplitude, int steps, double dt, const s
                   {
                     gelx::PathState state;
                     dynamics.save(state);
-                    o.checkpoints->write(problem, state, {});
+                    o.checkpoints->write(system, state, {});
                   }
                 }},
                o.resume);
@@ -425,5 +426,20 @@ int main(int argc, char* argv[])
                   "control: the restart without its acceleration differs by %.2e > 1e-7", off);
     checks.require(text, off > 1e-7);
     checkpoints.clear();
+
+    // 7. Fixed steps after a failed stage: the step TS cut (a quarter) comes back at once
+    //    (PETSc's TSADAPTNONE would keep it to the end)
+    const double dt = T_coarse / per_period;
+    const Vibration cut = vibrate(coarse, 1e-3, 20, dt, "cut_", {0, nullptr, nullptr, 20});
+    //    (the last step is short too: it ends the run at 20 dt)
+    int short_steps = 0;
+    for (std::size_t k = 0; k + 1 < cut.steps.size(); ++k)
+      short_steps += cut.steps[k] < 0.99 * dt;
+    std::snprintf(text, sizeof text,
+                  "fixed steps: one cut step (%.3g of dt) among %zu, then dt again: %d short "
+                  "before the last",
+                  *std::min_element(cut.steps.begin(), cut.steps.end()) / dt, cut.steps.size(),
+                  short_steps);
+    checks.require(text, short_steps == 1 && cut.samples.back().t > (20 - 1e-9) * dt);
   });
 }

@@ -1,7 +1,9 @@
 #include "buckling.h"
+#include "dynamics.h"
 #include "timing.h"
 #include "parameters.h"
 #include "petsc_utils.h"
+#include "problem.h"
 
 #include <algorithm>
 #include <cmath>
@@ -127,6 +129,44 @@ BucklingMode lowest_tangent_eigenpair(MPI_Comm comm, Mat K,
   VecDestroy(&v);
   EPSDestroy(&eps);
   return pair;
+}
+
+std::vector<BucklingMode> vibration_modes(MPI_Comm comm, NonlinearSystem& system,
+                                          const dolfinx::fem::Form<double>& mass_form,
+                                          int num_modes)
+{
+  // -K_D v = theta K v with K_D = -M: M v = theta K v, theta = 1 / omega^2 largest first.
+  // M without the prescribed rows and columns, whose tangent rows are the identity: their
+  // theta is 0
+  Mat K = system.create_matrix();
+  system.tangent(K);
+  Mat M = assemble_system_mass(system, mass_form, "vibration_modes");
+  PetscInt first;
+  GELX_PETSC(MatGetOwnershipRange(M, &first, nullptr));
+  std::vector<PetscInt> rows = system.prescribed_rows();
+  for (PetscInt& r : rows)
+    r += first;
+  GELX_PETSC(MatZeroRowsColumns(M, PetscInt(rows.size()), rows.data(), 0.0, nullptr, nullptr));
+  Mat K_minus_M;
+  GELX_PETSC(MatDuplicate(K, MAT_COPY_VALUES, &K_minus_M));
+  GELX_PETSC(MatAXPY(K_minus_M, -1.0, M, SUBSET_NONZERO_PATTERN));
+  std::vector<BucklingMode> modes;
+  try
+  {
+    modes = LinearBuckling(comm, "vibration_")
+                .solve(K, K_minus_M, num_modes, system.problem().u()->function_space());
+  }
+  catch (...)
+  {
+    MatDestroy(&K);
+    MatDestroy(&M);
+    MatDestroy(&K_minus_M);
+    throw;
+  }
+  MatDestroy(&K);
+  MatDestroy(&M);
+  MatDestroy(&K_minus_M);
+  return modes;
 }
 
 void default_to_symmetric_factorisation(const std::string& prefix)

@@ -4,6 +4,7 @@
 
 #include "system.h"
 
+#include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/mesh/Mesh.h>
 #include <memory>
@@ -55,6 +56,14 @@ private:
 /// physical eigenvalue sought is nearer zero than 1, which holds near instabilities.
 BucklingMode lowest_tangent_eigenpair(MPI_Comm comm, Mat K,
                                       std::shared_ptr<const dolfinx::fem::FunctionSpace> space);
+
+/// The `num_modes` lowest free vibrations of `system` about its current state, K phi =
+/// omega^2 M phi with K its tangent and M the mass form assembled on its unknowns (prescribed
+/// rows and columns left out): load_factor holds omega^2, in increasing order. SLEPc, through
+/// LinearBuckling with K_D = -M (options prefix `vibration_`). Collective.
+std::vector<BucklingMode> vibration_modes(MPI_Comm comm, NonlinearSystem& system,
+                                          const dolfinx::fem::Form<double>& mass_form,
+                                          int num_modes);
 
 /// Make the linear solver with options `prefix` factorise by MUMPS's LDL^T (Cholesky of a
 /// symmetric, possibly indefinite matrix) unless the user chose otherwise, with ICNTL(13) = 1:

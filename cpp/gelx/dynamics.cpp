@@ -131,6 +131,58 @@ double stop_below_min_step(TS ts, double min_step)
   return t - t_previous;
 }
 
+void set_time_stepping_defaults(const std::string& prefix, const std::string& type,
+                                double loading_time, double hold_time, double first_step)
+{
+  const auto number = [](double v)
+  {
+    std::ostringstream s;
+    s.precision(17);
+    s << v;
+    return s.str();
+  };
+  set_default_option(prefix, "ts_type", type);
+  set_default_option(prefix, "ts_adapt_type", "basic");
+  set_default_option(prefix, "ts_adapt_dt_max", number(loading_time / 10));
+  set_default_option(prefix, "ts_dt", number(real_option(prefix, "dt", first_step)));
+  set_default_option(prefix, "ts_max_time", number(loading_time + hold_time));
+  set_default_option(prefix, "ts_exact_final_time", "matchstep");
+  // A failed Newton solve is no failure of the run: TS retries with a smaller step
+  set_default_option(prefix, "ts_max_snes_failures", "-1");
+  set_default_option(prefix, "ts_max_reject", "20");
+  set_default_option(prefix, "ts_max_steps", "100000");
+  // Full Newton steps, few of them: where they fail, the smaller time step TS takes then is
+  // the globalisation (its predictor starts closer), not a line search
+  set_default_option(prefix, "snes_linesearch_type", "basic");
+  set_default_option(prefix, "snes_max_it", "10");
+  set_linear_solver_defaults(prefix);
+}
+
+StepRecord accepted_step(TS ts, int step, double amplitude, double dt, StepCounters& last)
+{
+  PetscInt snes_iterations, ksp_iterations, rejections;
+  GELX_PETSC(TSGetSNESIterations(ts, &snes_iterations));
+  GELX_PETSC(TSGetKSPIterations(ts, &ksp_iterations));
+  GELX_PETSC(TSGetStepRejections(ts, &rejections));
+  SNES snes;
+  GELX_PETSC(TSGetSNES(ts, &snes));
+  SNESConvergedReason reason;
+  GELX_PETSC(SNESGetConvergedReason(snes, &reason));
+  const double now = wall_clock();
+  StepRecord record;
+  record.step = step;
+  record.load = amplitude;
+  record.step_size = dt;
+  record.newton.converged = reason > 0;
+  record.newton.iterations = snes_iterations - last.snes_iterations;
+  record.newton.linear_iterations = ksp_iterations - last.ksp_iterations;
+  record.newton.reason = SNESConvergedReasons[reason];
+  record.cutbacks = rejections - last.rejections;
+  record.wall_time = now - last.wall_time;
+  last = {int(snes_iterations), int(ksp_iterations), int(rejections), now};
+  return record;
+}
+
 double wall_clock()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
@@ -192,29 +244,8 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   _work.reset(system.create_vector());
 
   // Defaults (the user's options win), then TS, SNES and KSP from the options database
-  const auto number = [](double v)
-  {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
-  };
-  set_default_option(prefix, "ts_type", "bdf");
+  set_time_stepping_defaults(prefix, "bdf", _loading_time, _hold_time, _loading_time / 50);
   set_default_option(prefix, "ts_bdf_order", "2");
-  set_default_option(prefix, "ts_adapt_type", "basic");
-  set_default_option(prefix, "ts_adapt_dt_max", number(_loading_time / 10));
-  set_default_option(prefix, "ts_dt", number(real_option(prefix, "dt", _loading_time / 50)));
-  set_default_option(prefix, "ts_max_time", number(_loading_time + _hold_time));
-  set_default_option(prefix, "ts_exact_final_time", "matchstep");
-  // A failed Newton solve is no failure of the run: TS retries with a smaller step
-  set_default_option(prefix, "ts_max_snes_failures", "-1");
-  set_default_option(prefix, "ts_max_reject", "20");
-  set_default_option(prefix, "ts_max_steps", "10000");
-  // Full Newton steps, few of them: where they fail, the smaller time step TS takes then is
-  // the globalisation (its predictor starts closer), not a line search
-  set_default_option(prefix, "snes_linesearch_type", "basic");
-  set_default_option(prefix, "snes_max_it", "10");
-  set_linear_solver_defaults(prefix);
 
   GELX_PETSC(TSCreate(comm, &_ts));
   GELX_PETSC(TSSetOptionsPrefix(_ts, prefix.c_str()));
@@ -323,37 +354,15 @@ void DampedDynamics::accepted(int step, double t, Vec u)
     _summary.dissipated_energy += 0.5 * (_power + power) * dt;
     _power = power;
 
-    PetscInt snes_iterations, ksp_iterations, rejections;
-    GELX_PETSC(TSGetSNESIterations(_ts, &snes_iterations));
-    GELX_PETSC(TSGetKSPIterations(_ts, &ksp_iterations));
-    GELX_PETSC(TSGetStepRejections(_ts, &rejections));
-    SNES snes;
-    GELX_PETSC(TSGetSNES(_ts, &snes));
-    SNESConvergedReason reason;
-    GELX_PETSC(SNESGetConvergedReason(snes, &reason));
-    const double now = wall_clock();
-
     DynamicsRecord record;
-    record.step.step = step;
-    record.step.load = smooth_step(t, _loading_time);
-    record.step.step_size = dt;
-    record.step.newton.converged = reason > 0;
-    record.step.newton.iterations = snes_iterations - _snes_iterations;
-    record.step.newton.linear_iterations = ksp_iterations - _ksp_iterations;
-    record.step.newton.reason = SNESConvergedReasons[reason];
-    record.step.cutbacks = rejections - _rejections;
-    record.step.wall_time = now - _wall_start;
+    record.step = accepted_step(_ts, step, smooth_step(t, _loading_time), dt, _counters);
     record.time = t;
     record.strain_energy = _strain_energy();
     record.kinetic_energy = 0.5 * twice_kinetic;
     record.dissipated_energy = _summary.dissipated_energy;
-    _snes_iterations = snes_iterations;
-    _ksp_iterations = ksp_iterations;
-    _rejections = rejections;
-    _wall_start = now;
 
     _summary.steps = step;
-    _summary.rejected_steps = rejections;
+    _summary.rejected_steps = _counters.rejections;
     PetscInt failed_solves;
     GELX_PETSC(TSGetSNESFailures(_ts, &failed_solves));
     _summary.failed_solves = failed_solves;
@@ -369,7 +378,7 @@ void DampedDynamics::accepted(int step, double t, Vec u)
       observe(record);
   }
   else
-    _wall_start = wall_clock();
+    _counters.wall_time = wall_clock();
   // Keep the last three accepted states, newest first (the oldest vector is reused)
   OwnedVec copy;
   if (_history.size() == 3)
@@ -394,7 +403,7 @@ DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observe
   _history.clear();
   _history_time.clear();
   _power = 0; // the run starts at rest
-  _snes_iterations = _ksp_iterations = _rejections = 0;
+  _counters = StepCounters{};
 
   OwnedVec x(_system.create_vector());
   GELX_PETSC(VecCopy(_system.unknowns(), x.get()));

@@ -51,6 +51,23 @@ double quadratic_form(Mat A, Vec v, Vec work);
 /// measured) then has every other stage rejected and the others accepted at 1e-16 s, for
 /// ever.
 double stop_below_min_step(TS ts, double min_step);
+/// The options both integrators default to (the user's win): TS `type`, basic adaptivity
+/// with steps up to loading_time / 10, the first step -PREFIXdt (or `first_step`), the end
+/// time loading + hold, failed Newton solves retried with smaller steps (20 in a row at
+/// most), 1e5 steps at most; SNES with full steps (basic line search), 10 iterations at most;
+/// the linear solver set (set_linear_solver_defaults).
+void set_time_stepping_defaults(const std::string& prefix, const std::string& type,
+                                double loading_time, double hold_time, double first_step);
+/// TS's counters at the last accepted step, so that each step reports its own share.
+struct StepCounters
+{
+  int snes_iterations = 0, ksp_iterations = 0, rejections = 0;
+  double wall_time = 0; ///< wall_clock() then
+};
+/// The record of the step TS just accepted: its number, amplitude and size, its Newton
+/// iterations, linear iterations and rejected attempts since `last`, whether its last SNES
+/// solve converged and why, its wall time; `last` moves on to now.
+StepRecord accepted_step(TS ts, int step, double amplitude, double dt, StepCounters& last);
 /// Seconds of a monotonic clock.
 double wall_clock();
 
@@ -140,7 +157,7 @@ struct DynamicsSummary
 /// accepted step below it ends the run with a ConvergenceError); PETSc's -PREFIX_ts_*
 /// (defaults: ts_type bdf, ts_bdf_order 2, ts_adapt_type basic, ts_adapt_dt_max T / 10 so that
 /// the ramp's energies are resolved, ts_max_snes_failures -1, ts_max_reject 20,
-/// ts_max_steps 10000), -PREFIX_snes_*, -PREFIX_ksp_* and -PREFIX_pc_* (a direct solve).
+/// ts_max_steps 100000), -PREFIX_snes_*, -PREFIX_ksp_* and -PREFIX_pc_* (a direct solve).
 ///
 /// The velocity of the records is the derivative at t_n of the polynomial through the last
 /// three accepted states (two on the first step), the derivative BDF2 itself uses. The
@@ -217,8 +234,7 @@ private:
   const std::vector<DynamicsObserver>* _observers = nullptr;
   DynamicsSummary _summary;
   double _power = 0; ///< c v^T M v at the last accepted step
-  int _snes_iterations = 0, _ksp_iterations = 0, _rejections = 0;
-  double _wall_start = 0;
+  StepCounters _counters;
 };
 
 } // namespace gelx

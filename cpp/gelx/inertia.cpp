@@ -99,14 +99,6 @@ PetscErrorCode post_step(TS ts)
   return guarded_callback(d.callback_error, [&] { d.check_step_size(); });
 }
 
-std::string number(double v)
-{
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
-
 OwnedVec copy_of(Vec v)
 {
   Vec c;
@@ -127,7 +119,7 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
       _hold_time(positive_option(prefix, "hold_time", 0.0, true)),
       _kinetic_bound(positive_option(prefix, "kinetic_bound", 0.05)),
       _min_step(positive_option(prefix, "min_step", 1e-12 * _loading_time)),
-      _has_reactions(&system == &system.problem())
+      _has_reactions(system.unknowns() == system.problem().unknowns())
 {
   const double a = positive_option(prefix, "rayleigh_mass", 0.0, true);
   const double b = positive_option(prefix, "rayleigh_stiffness", 0.0, true);
@@ -169,18 +161,7 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
   _du.reset(system.create_vector());
 
   // Defaults (the user's options win), then TS, SNES and KSP from the options database
-  set_default_option(prefix, "ts_type", "alpha2");
-  set_default_option(prefix, "ts_adapt_type", "basic");
-  set_default_option(prefix, "ts_adapt_dt_max", number(_loading_time / 10));
-  set_default_option(prefix, "ts_dt", number(real_option(prefix, "dt", _loading_time / 100)));
-  set_default_option(prefix, "ts_max_time", number(_loading_time + _hold_time));
-  set_default_option(prefix, "ts_exact_final_time", "matchstep");
-  set_default_option(prefix, "ts_max_snes_failures", "-1");
-  set_default_option(prefix, "ts_max_reject", "20");
-  set_default_option(prefix, "ts_max_steps", "100000");
-  set_default_option(prefix, "snes_linesearch_type", "basic");
-  set_default_option(prefix, "snes_max_it", "10");
-  set_linear_solver_defaults(prefix);
+  set_time_stepping_defaults(prefix, "alpha2", _loading_time, _hold_time, _loading_time / 100);
 
   GELX_PETSC(TSCreate(comm, &_ts));
   GELX_PETSC(TSSetOptionsPrefix(_ts, prefix.c_str()));
@@ -201,6 +182,12 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
   if (!alpha2)
     throw InputError("-" + prefix + "ts_type must be alpha2 (the second-order integrator "
                      "whose state gelx saves)");
+  TSAdapt adapt;
+  GELX_PETSC(TSGetAdapt(_ts, &adapt));
+  PetscBool fixed;
+  GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(adapt), TSADAPTNONE, &fixed));
+  if (fixed)
+    GELX_PETSC(TSGetTimeStep(_ts, &_fixed_step));
   SNES snes;
   GELX_PETSC(TSGetSNES(_ts, &snes));
   KSP ksp;
@@ -308,6 +295,20 @@ void InertialDynamics::check_step_size()
 {
   if (const double step = stop_below_min_step(_ts, _min_step); step > 0)
     _too_small_step = step;
+  // Fixed steps (-PREFIX_ts_adapt_type none) come back after a cut: PETSc 3.18's TSADAPTNONE
+  // keeps the step that a failed Newton solve cut (to a quarter) for the rest of the run
+  // (measured: the bistrip buckling at 24.85 cm then went on at a sixteenth of its step)
+  // Only where a whole step remains: near the end TSAdapt's own choice lands on the final
+  // time (-ts_exact_final_time matchstep)
+  if (_fixed_step > 0)
+  {
+    PetscReal t, end_time, next;
+    GELX_PETSC(TSGetTime(_ts, &t));
+    GELX_PETSC(TSGetMaxTime(_ts, &end_time));
+    GELX_PETSC(TSGetTimeStep(_ts, &next));
+    if (next < _fixed_step && end_time - t > _fixed_step * (1 + 1e-9))
+      GELX_PETSC(TSSetTimeStep(_ts, _fixed_step));
+  }
 }
 
 void InertialDynamics::accepted(int step, double t, Vec u)
@@ -316,7 +317,7 @@ void InertialDynamics::accepted(int step, double t, Vec u)
   {
     // TSSolve's first call: the state the run starts from, recorded already
     _skip_first_monitor = false;
-    _wall_start = wall_clock();
+    _counters.wall_time = wall_clock();
     return;
   }
   _initial_acceleration.reset(); // the first step is taken
@@ -356,27 +357,8 @@ void InertialDynamics::accepted(int step, double t, Vec u)
     _summary.dissipated_energy += dt * quadratic_form(_damping, _mean_velocity.get(), _work.get());
   }
 
-  PetscInt snes_iterations, ksp_iterations, rejections, failed_solves;
-  GELX_PETSC(TSGetSNESIterations(_ts, &snes_iterations));
-  GELX_PETSC(TSGetKSPIterations(_ts, &ksp_iterations));
-  GELX_PETSC(TSGetStepRejections(_ts, &rejections));
-  GELX_PETSC(TSGetSNESFailures(_ts, &failed_solves));
-  SNES snes;
-  GELX_PETSC(TSGetSNES(_ts, &snes));
-  SNESConvergedReason reason;
-  GELX_PETSC(SNESGetConvergedReason(snes, &reason));
-  const double now = wall_clock();
-
   DynamicsRecord record;
-  record.step.step = step;
-  record.step.load = smooth_step(t, _loading_time);
-  record.step.step_size = dt;
-  record.step.newton.converged = reason > 0;
-  record.step.newton.iterations = snes_iterations - _snes_iterations;
-  record.step.newton.linear_iterations = ksp_iterations - _ksp_iterations;
-  record.step.newton.reason = SNESConvergedReasons[reason];
-  record.step.cutbacks = rejections - _rejections;
-  record.step.wall_time = now - _wall_start;
+  record.step = accepted_step(_ts, step, smooth_step(t, _loading_time), dt, _counters);
   record.time = t;
   record.strain_energy = _strain_energy();
   record.kinetic_energy = 0.5 * quadratic_form(_mass, v, _work.get());
@@ -388,13 +370,10 @@ void InertialDynamics::accepted(int step, double t, Vec u)
                               - (record.kinetic_energy - _kinetic_energy0)
                               - record.dissipated_energy;
   }
-  _snes_iterations = snes_iterations;
-  _ksp_iterations = ksp_iterations;
-  _rejections = rejections;
-  _wall_start = now;
-
   _summary.steps = step;
   _summary.rejected_steps += record.step.cutbacks;
+  PetscInt failed_solves;
+  GELX_PETSC(TSGetSNESFailures(_ts, &failed_solves));
   _summary.failed_solves = failed_solves;
   _summary.time = t;
   _summary.strain_energy = record.strain_energy;
@@ -480,7 +459,7 @@ DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& obser
   _summary.dissipation_bound = INFINITY; // no quasi-static criterion of real inertia
   _summary.kinetic_bound = _kinetic_bound;
   _summary.external_work = _has_reactions ? 0.0 : NAN;
-  _snes_iterations = _ksp_iterations = _rejections = 0;
+  _counters = StepCounters{};
   _have_previous_reaction = false;
   callback_error = nullptr;
   _too_small_step = 0;

@@ -44,8 +44,8 @@ namespace gelx
 /// problems), the work of the supports W = int r . du over the prescribed rows with the
 /// reactions r = (R(u) + M a + C v) there (trapezoidal), and the balance residual
 /// W - (SE - SE0) - (KE - KE0) - ED: the numerical dissipation of rho_inf < 1 and the time
-/// integration's error. W and the balance need reactions, so only for a system that is the
-/// problem itself (NaN otherwise); SE must then be all of the scene's potential energy (no
+/// integration's error. W and the balance need reactions, so only for a system whose unknowns
+/// are the problem's (the problem or a decorator keeping its layout; NaN otherwise); SE must then be all of the scene's potential energy (no
 /// applied loads besides prescribed displacements, or their potential included).
 ///
 /// Restart: save() puts the integrator's state after the last accepted step (velocity,
@@ -59,7 +59,7 @@ namespace gelx
 /// that start; the layout is checked at run time against TSAlpha2GetParams and the vectors'
 /// sizes, and a PETSc whose layout differs is refused in one line.
 ///
-/// Options (prefix PREFIX, default `inertia_`): gelx's loading_time (T, 1), hold_time (0), dt
+/// Options (prefix PREFIX, default `inertial_`): gelx's loading_time (T, 1), hold_time (0), dt
 /// (first step, T / 100), rayleigh_mass (a, 1/time, 0), rayleigh_stiffness (b, time, 0),
 /// kinetic_bound (KE / SE above which summary says "not quasi-static", 0.05), min_step
 /// (1e-12 T); PETSc's -PREFIX_ts_* (defaults: ts_type alpha2, ts_adapt_type basic,
@@ -75,7 +75,7 @@ public:
   InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
                    const dolfinx::fem::Form<double>& mass_form,
                    std::function<double()> strain_energy, std::function<void(double)> apply_load,
-                   const std::string& prefix = "inertia_");
+                   const std::string& prefix = "inertial_");
   ~InertialDynamics();
   InertialDynamics(const InertialDynamics&) = delete;
   InertialDynamics& operator=(const InertialDynamics&) = delete;
@@ -129,7 +129,8 @@ private:
   std::string _prefix;
   double _loading_time, _hold_time, _kinetic_bound, _min_step;
   double _too_small_step = 0;
-  bool _has_reactions; ///< the system is the problem: W and the balance are known
+  double _fixed_step = 0; ///< with -PREFIX_ts_adapt_type none: the step, restored after cuts
+  bool _has_reactions; ///< the unknowns are the problem's: W and the balance are known
   TS _ts = nullptr;
   Mat _mass = nullptr, _mass_D = nullptr;        ///< M and M_D
   Mat _damping = nullptr, _damping_D = nullptr;  ///< C and C_D (null without damping)
@@ -143,8 +144,7 @@ private:
   DynamicsSummary _summary;
   double _strain_energy0 = 0, _kinetic_energy0 = 0;
   bool _resuming = false, _skip_first_monitor = false, _have_previous_reaction = false;
-  int _snes_iterations = 0, _ksp_iterations = 0, _rejections = 0;
-  double _wall_start = 0;
+  StepCounters _counters;
 };
 
 } // namespace gelx

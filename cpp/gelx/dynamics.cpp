@@ -183,6 +183,26 @@ StepRecord accepted_step(TS ts, int step, double amplitude, double dt, StepCount
   return record;
 }
 
+void throw_if_stopped_early(TS ts, double t, const std::string& what_ran,
+                            double too_small_step, const std::string& prefix, double min_step,
+                            const std::string& unit)
+{
+  TSConvergedReason reason;
+  GELX_PETSC(TSGetConvergedReason(ts, &reason));
+  PetscReal end_time;
+  GELX_PETSC(TSGetMaxTime(ts, &end_time));
+  // TS also stops "converged" at its step limit (-PREFIX_ts_max_steps): short of the end time
+  if (reason >= 0 && t >= end_time * (1 - 1e-12))
+    return;
+  std::ostringstream what;
+  what << what_ran << " stopped at t = " << t << " of " << end_time << ": "
+       << TSConvergedReasons[reason];
+  if (too_small_step > 0)
+    what << " (a step of " << too_small_step << unit << ", below -" << prefix << "min_step "
+         << min_step << unit << ": the path runs into states it cannot take)";
+  throw ConvergenceError(what.str());
+}
+
 double wall_clock()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
@@ -416,25 +436,11 @@ DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observe
   if (callback_error)
     std::rethrow_exception(callback_error);
   GELX_PETSC(ierr);
-  TSConvergedReason reason;
-  GELX_PETSC(TSGetConvergedReason(_ts, &reason));
   // The last accepted state (TS leaves x there; a failed step is rolled back)
   const double t = _history_time.empty() ? 0.0 : _history_time.front();
   set_time(t);
   _system.set_state(_history.empty() ? x.get() : _history.front().get());
-  // TS also stops "converged" at its step limit (-PREFIX_ts_max_steps): short of the end time
-  PetscReal end_time;
-  GELX_PETSC(TSGetMaxTime(_ts, &end_time));
-  if (reason < 0 || t < end_time * (1 - 1e-12))
-  {
-    std::ostringstream what;
-    what << "damped dynamics stopped at t = " << t << " of " << end_time << ": "
-         << TSConvergedReasons[reason];
-    if (_too_small_step > 0)
-      what << " (a step of " << _too_small_step << " s, below -" << _prefix << "min_step "
-           << _min_step << " s: the path runs into states it cannot take)";
-    throw ConvergenceError(what.str());
-  }
+  throw_if_stopped_early(_ts, t, "damped dynamics", _too_small_step, _prefix, _min_step, " s");
   return _summary;
 }
 

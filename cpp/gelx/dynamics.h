@@ -68,6 +68,11 @@ struct StepCounters
 /// iterations, linear iterations and rejected attempts since `last`, whether its last SNES
 /// solve converged and why, its wall time; `last` moves on to now.
 StepRecord accepted_step(TS ts, int step, double amplitude, double dt, StepCounters& last);
+/// After TSSolve: throws ConvergenceError naming `what_ran`, TS's reason and the step below
+/// -PREFIXmin_step if there was one (in `unit`), unless TS reached its final time.
+void throw_if_stopped_early(TS ts, double t, const std::string& what_ran,
+                            double too_small_step, const std::string& prefix, double min_step,
+                            const std::string& unit);
 /// Seconds of a monotonic clock.
 double wall_clock();
 

@@ -507,24 +507,12 @@ DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& obser
   if (callback_error)
     std::rethrow_exception(callback_error);
   GELX_PETSC(ierr);
-  TSConvergedReason reason;
-  GELX_PETSC(TSGetConvergedReason(_ts, &reason));
   // The last accepted state (a failed step is rolled back)
-  PetscReal t, end_time;
+  PetscReal t;
   GELX_PETSC(TSGetTime(_ts, &t));
-  GELX_PETSC(TSGetMaxTime(_ts, &end_time));
   set_time(t);
   _system.set_state(_ts->vec_sol);
-  if (reason < 0 || t < end_time * (1 - 1e-12))
-  {
-    std::ostringstream what;
-    what << "inertial dynamics stopped at t = " << t << " of " << end_time << ": "
-         << TSConvergedReasons[reason];
-    if (_too_small_step > 0)
-      what << " (a step of " << _too_small_step << ", below -" << _prefix << "min_step "
-           << _min_step << ": the path runs into states it cannot take)";
-    throw ConvergenceError(what.str());
-  }
+  throw_if_stopped_early(_ts, t, "inertial dynamics", _too_small_step, _prefix, _min_step, "");
   return _summary;
 }
 

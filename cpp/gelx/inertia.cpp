@@ -211,9 +211,28 @@ void InertialDynamics::set_initial_velocity(Vec v)
 
 void InertialDynamics::set_time(double t) { _apply_load(smooth_step(t, _loading_time)); }
 
+void InertialDynamics::set_stage_time(double t_stage)
+{
+  // The amplitude at the stage is the alpha_f-weighted mean of the step's end amplitudes,
+  // not the amplitude at the stage time: the prescribed rows hold u_a - g with
+  // u_a = (1 - alpha_f) u_n + alpha_f u_n+1, so that the step ends exactly on g(t_n+1) (for
+  // prescribed values linear in the amplitude). With g(t_a) instead, at rho_inf = 1 it ends
+  // off g by 2 g(t_a) - g(t_n) - g(t_n+1) = -g'' dt^2 / 4 plus the previous step's error with
+  // its sign changed: an undamped alternation that the Newmark update turns into an
+  // acceleration as large as g'' in those rows, felt by their free neighbours through the
+  // mass. TSAlpha_Restart's
+  // backward-Euler half steps run with alpha_f = 1: the amplitude at the stage time.
+  PetscReal alpha_m, alpha_f, gamma, beta, dt;
+  GELX_PETSC(TSAlpha2GetParams(_ts, &alpha_m, &alpha_f, &gamma, &beta));
+  GELX_PETSC(TSGetTimeStep(_ts, &dt));
+  const double t_start = t_stage - alpha_f * dt;
+  _apply_load((1 - alpha_f) * smooth_step(t_start, _loading_time)
+              + alpha_f * smooth_step(t_start + dt, _loading_time));
+}
+
 void InertialDynamics::form_function(double t, Vec u, Vec v, Vec a, Vec F)
 {
-  set_time(t);
+  set_stage_time(t);
   _system.set_state(u);
   if (!_system.admissible())
   {
@@ -230,7 +249,7 @@ void InertialDynamics::form_function(double t, Vec u, Vec v, Vec a, Vec F)
 
 void InertialDynamics::form_jacobian(double t, Vec u, double shift_v, double shift_a, Mat P)
 {
-  set_time(t);
+  set_stage_time(t);
   _system.set_state(u);
   _system.tangent(P);
   GELX_PETSC(MatAXPY(P, shift_a, _mass_D, SAME_NONZERO_PATTERN));

@@ -33,7 +33,9 @@ namespace gelx
 /// rule, which conserves the energy of a linear undamped system exactly; PETSc's own default).
 /// TS evaluates F(t, u, v, a) = M_D a + C_D v + R(u; t) at the stage (t_n+alpha_f, u_n+alpha_f,
 /// v_n+alpha_f, a_n+alpha_m), with M_D, C_D the matrices with the prescribed rows zeroed: those
-/// rows hold R's u - g(t), so the prescribed displacements are met at the stage time TS passes.
+/// rows hold R's u - g with the loads at the step's alpha_f-weighted amplitude
+/// (1 - alpha_f) A(t_n) + alpha_f A(t_n+1), so that every step ends on the prescribed
+/// displacements g(t_n+1) (set_stage_time says why not A(t_n+alpha_f)).
 /// The step adapts through TSAdapt (-PREFIX_ts_adapt_type basic by default, on TSALPHA2's
 /// local error estimate; `none` for fixed steps). An inadmissible state (admissible() false)
 /// is a SNES function-domain error: TS retries the step smaller.
@@ -116,7 +118,10 @@ public:
   std::exception_ptr callback_error;
 
 private:
+  /// The loads at amplitude A(t)
   void set_time(double t);
+  /// The loads of the stage at stage time t_stage (the step's alpha_f-weighted amplitude)
+  void set_stage_time(double t_stage);
   /// r . du over the prescribed rows' reactions at (u, v, a), into _reaction (see above).
   void reactions(Vec u, Vec v, Vec a, Vec r);
   /// a(0) from the equation of motion at the current state and velocity v (see pre_stage)

@@ -1,24 +1,33 @@
-// gelx scene: buckling, by damped quasi-static dynamics (gelx::DampedDynamics)
+// gelx scene: buckling in time, by damped quasi-static dynamics (gelx::DampedDynamics) or
+// with inertia (gelx::InertialDynamics)
 //
 // Sample runs:
 //   build/demos/buckling/gelx-buckling-dynamics --output /tmp/column
 //   build/demos/buckling/gelx-buckling-dynamics --output /tmp/fast -dynamics_loading_time 1e3
 //       -dynamics_hold_time 0               (20 times faster: flagged "not quasi-static")
+//   build/demos/buckling/gelx-buckling-dynamics --method inertia --output /tmp/inertial
+//       --checkpoint_every 10               (then --restart /tmp/inertial continues it)
 //   mpirun -np 2 build/demos/buckling/gelx-buckling-dynamics --output /tmp/column
 //       -dynamics_ts_monitor -dynamics_snes_converged_reason
 //
 // The column of the buckling scene (main.cpp), with mode 1 seeded as an imperfection, is
 // loaded past its first critical load by the smooth-step ramp (a dead load clamped-free, a
-// prescribed shortening clamped-clamped) and held, following c M u' + R(u; t) = 0 in time with
-// PETSc TS. steps.csv has, per accepted step, the energies (strain, kinetic, dissipated), their
-// ratios KE/SE and ED/SE (ABAQUS' ALLKE/ALLSE, ALLSD/ALLIE), the deflection and the axial
+// prescribed shortening clamped-clamped) and held, following in time with PETSc TS either
+// the first-order viscous flow c M u' + R(u; t) = 0 (--method dynamics, options -dynamics_)
+// or the equation of motion M u'' + C u' + R(u; t) = 0 with a light Rayleigh damping
+// (--method inertia, options -inertial_). steps.csv has, per accepted step, the energies
+// (strain, kinetic, dissipated; with inertia the supports' work and the balance residual),
+// their ratios KE/SE and ED/SE (ABAQUS' ALLKE/ALLSE, ALLSD/ALLIE), the deflection and the axial
 // force with the elastica's load at that deflection; summary.json says whether the run was
-// quasi-static (both ratios within their bounds, -dynamics_dissipation_bound and
-// -dynamics_kinetic_bound). The verification is tests/damped_dynamics.cpp.
+// quasi-static (the ratios within their bounds, -PREFIX_dissipation_bound and
+// -PREFIX_kinetic_bound). With inertia the run checkpoints every --checkpoint_every steps and
+// continues exactly with --restart. The verifications are tests/damped_dynamics.cpp and
+// tests/inertial_dynamics.cpp.
 
 #include "euler_column.h"
 
 #include <gelx/dynamics.h>
+#include <gelx/inertia.h>
 #include <gelx/petsc_utils.h>
 #include <gelx/program.h>
 
@@ -28,6 +37,7 @@ struct Loading
 {
   double imperfection = 0.01; ///< amplitude of the seeded mode 1, over tx
   double load = 10;           ///< final load factor in Euler loads (traction or shortening)
+  std::string method = "dynamics"; ///< "dynamics" (first-order flow) or "inertia"
 };
 } // namespace
 
@@ -49,6 +59,8 @@ int main(int argc, char* argv[])
            "final load factor in Euler loads (a dead load clamped-free, a shortening "
            "clamped-clamped)",
            gelx::Parameters::positive);
+  prm.bind("analysis", "method", loading.method,
+           "path: dynamics (first-order viscous flow) or inertia (equation of motion)");
 
   return gelx::run_program(argc, argv, "gelx-buckling-dynamics", prm, [&](gelx::Run& run)
   {
@@ -64,18 +76,30 @@ int main(int argc, char* argv[])
                    {"critical_load", P_cr},
                    {"imperfection_amplitude", loading.imperfection * p.tx}};
 
-    // 3. Time scales for the default column (tests/damped_dynamics.cpp explains them): a
-    //    loading time of 37 periods of its first bending vibration at rho = 1, a damping
-    //    that dissipates 0.2 % of the strain energy
-    gelx::set_default_option("dynamics_", "loading_time", "2e4");
-    gelx::set_default_option("dynamics_", "hold_time", "4e3");
-    gelx::set_default_option("dynamics_", "damping", "1e-3");
-    gelx::set_default_option("dynamics_", "ts_rtol", "1e-3");
-    gelx::set_default_option("dynamics_", "ts_atol", "1e-3");
-    gelx::DampedDynamics dynamics(
-        run.comm(), column.problem(), *column.mass_form(),
-        [&] { return column.strain_energy(); },
-        [&](double a) { column.set_load_factor(a * loading.load); });
+    if (loading.method != "dynamics" && loading.method != "inertia")
+      throw gelx::InputError("--method must be dynamics or inertia, not '" + loading.method
+                             + "'");
+
+    // 3. Time scales for the default column at rho = 1 (tests/damped_dynamics.cpp explains
+    //    them): its first bending period is 540, the loading time 37 of them. The flow's
+    //    damping dissipates 0.2 % of the strain energy; with inertia a Rayleigh mass damping
+    //    a = 1.2e-3 damps the first bending mode at 5 % of critical (a / (2 omega_1)), so
+    //    that the column settles in the hold of 7 periods, and rho_inf = 0.8 removes what
+    //    the steps do not resolve (the axial modes)
+    const std::string prefix = loading.method == "inertia" ? "inertial_" : "dynamics_";
+    gelx::set_default_option(prefix, "loading_time", "2e4");
+    gelx::set_default_option(prefix, "hold_time", "4e3");
+    gelx::set_default_option(prefix, "ts_rtol", "1e-3");
+    gelx::set_default_option(prefix, "ts_atol", "1e-3");
+    if (loading.method == "inertia")
+    {
+      gelx::set_default_option(prefix, "rayleigh_mass", "1.2e-3");
+      gelx::set_default_option(prefix, "ts_alpha_radius", "0.8");
+    }
+    else
+      gelx::set_default_option(prefix, "damping", "1e-3");
+    auto strain_energy = [&] { return column.strain_energy(); };
+    auto apply_load = [&](double a) { column.set_load_factor(a * loading.load); };
 
     // 4. The run: a row of steps.csv per accepted step, the fields at each
     gelx::FieldSet fields;
@@ -85,20 +109,46 @@ int main(int argc, char* argv[])
     double d = 0; // the last step's deflection / L
     gelx::ProgressLine progress(
         run.comm(), {.quantity = [&] { return gelx::quantity_text("deflection/L", d); }});
-    const gelx::DynamicsSummary summary = dynamics.run(
-        {[&](const gelx::DynamicsRecord& r)
-         {
-           d = column.lateral_deflection();
-           const double P = column.axial_force();
-           nlohmann::json row = r.to_json();
-           row.update({{"deflection_over_L", d},
-                       {"axial_force_over_critical", P / P_cr},
-                       {"elastica_load_over_critical", column.elastica_load_ratio(d)}});
-           results.append_step(row);
-           results.write_fields(r.time, fields.update());
-           run.summary["dynamics"] = dynamics.summary().to_json();
-           progress.print(r.step, r.time, r.time / dynamics.end_time());
-         }});
+    auto record = [&](const gelx::DynamicsRecord& r, const gelx::DynamicsSummary& so_far,
+                      double end_time)
+    {
+      d = column.lateral_deflection();
+      const double P = column.axial_force();
+      nlohmann::json row = r.to_json();
+      row.update({{"deflection_over_L", d},
+                  {"axial_force_over_critical", P / P_cr},
+                  {"elastica_load_over_critical", column.elastica_load_ratio(d)}});
+      results.append_step(row);
+      results.write_fields(r.time, fields.update());
+      run.summary["dynamics"] = so_far.to_json();
+      progress.print(r.step, r.time, r.time / end_time);
+    };
+    gelx::DynamicsSummary summary;
+    if (loading.method == "inertia")
+    {
+      gelx::InertialDynamics dynamics(run.comm(), column.problem(), *column.mass_form(),
+                                      strain_energy, apply_load, prefix);
+      // The checkpoint after a step holds the integrator's state (velocity, acceleration,
+      // the previous step), so that --restart continues the run as if never stopped
+      const gelx::PathState start = run.start_path(column.problem());
+      const gelx::StepObserver checkpoints = run.checkpoints();
+      summary = dynamics.run(
+          {[&](const gelx::DynamicsRecord& r)
+           {
+             record(r, dynamics.summary(), dynamics.end_time());
+             gelx::PathState state;
+             dynamics.save(state);
+             checkpoints(r.step, state);
+           }},
+          start.step > 0 ? &start : nullptr);
+    }
+    else
+    {
+      gelx::DampedDynamics dynamics(run.comm(), column.problem(), *column.mass_form(),
+                                    strain_energy, apply_load, prefix);
+      summary = dynamics.run({[&](const gelx::DynamicsRecord& r)
+                              { record(r, dynamics.summary(), dynamics.end_time()); }});
+    }
     run.summary["dynamics"] = summary.to_json();
     run.summary.update({{"deflection_over_L", column.lateral_deflection()},
                         {"axial_force_over_critical", column.axial_force() / P_cr}});

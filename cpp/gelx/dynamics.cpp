@@ -158,6 +158,35 @@ void set_time_stepping_defaults(const std::string& prefix, const std::string& ty
   set_linear_solver_defaults(prefix);
 }
 
+namespace
+{
+PetscErrorCode line_search_succeeded(TSAdapt, TS ts, PetscReal, Vec, PetscBool* accept)
+{
+  SNES snes;
+  PetscCall(TSGetSNES(ts, &snes));
+  SNESLineSearch line_search;
+  PetscCall(SNESGetLineSearch(snes, &line_search));
+  SNESLineSearchReason line_search_reason;
+  PetscCall(SNESLineSearchGetReason(line_search, &line_search_reason));
+  SNESConvergedReason reason;
+  PetscCall(SNESGetConvergedReason(snes, &reason));
+  // Only that path: a solve that converged on its residual did no failed line search last
+  // (the line search's reason may be a previous solve's when it converged at once)
+  *accept = reason == SNES_CONVERGED_SNORM_RELATIVE
+                    && line_search_reason != SNES_LINESEARCH_SUCCEEDED
+                ? PETSC_FALSE
+                : PETSC_TRUE;
+  return 0;
+}
+} // namespace
+
+void reject_failed_line_searches(TS ts)
+{
+  TSAdapt adapt;
+  GELX_PETSC(TSGetAdapt(ts, &adapt));
+  GELX_PETSC(TSAdaptSetCheckStage(adapt, line_search_succeeded));
+}
+
 StepRecord accepted_step(TS ts, int step, double amplitude, double dt, StepCounters& last)
 {
   PetscInt snes_iterations, ksp_iterations, rejections;
@@ -278,6 +307,7 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSSetApplicationContext(_ts, this));
   GELX_PETSC(TSSetPostStep(_ts, post_step));
   GELX_PETSC(TSSetFromOptions(_ts));
+  reject_failed_line_searches(_ts);
   SNES snes;
   GELX_PETSC(TSGetSNES(_ts, &snes));
   KSP ksp;

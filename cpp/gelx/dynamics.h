@@ -58,6 +58,17 @@ double stop_below_min_step(TS ts, double min_step);
 /// the linear solver set (set_linear_solver_defaults).
 void set_time_stepping_defaults(const std::string& prefix, const std::string& type,
                                 double loading_time, double hold_time, double first_step);
+/// Makes TS reject a stage whose Newton solve ended in a failed line search that SNES called
+/// converged, so that TS retries it with a smaller step (a TSAdapt stage check; call after
+/// TSSetFromOptions). Why: PETSc 3.18's SNESNEWTONLS reports a line search that failed,
+/// with the step's norm below stol |x|, as converged (SNES_CONVERGED_SNORM_RELATIVE); the
+/// basic line search stops without computing that norm when its full step is inadmissible
+/// (a domain error), so the stage "converged" in 0 iterations at its initial guess, the
+/// previous state. Measured on the bistrip with inertia at a loading time of 0.1 s: from
+/// there on every step was accepted so, the end force frozen, until the kinetic energy
+/// reached 1e269.
+void reject_failed_line_searches(TS ts);
+
 /// TS's counters at the last accepted step, so that each step reports its own share.
 struct StepCounters
 {

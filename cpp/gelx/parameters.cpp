@@ -1,5 +1,6 @@
 #include "parameters.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -378,6 +379,15 @@ nlohmann::json Parameters::to_json() const
 }
 
 std::string Parameters::positive(double v) { return v > 0 ? "" : "must be positive"; }
+
+std::function<std::string(const std::string&)> Parameters::one_of(std::vector<std::string> words)
+{
+  std::string list;
+  for (std::size_t i = 0; i < words.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
+  return [words = std::move(words), message = "must be " + list](const std::string& w)
+  { return std::find(words.begin(), words.end(), w) != words.end() ? "" : message; };
+}
 std::string Parameters::non_negative(double v)
 {
   return v >= 0 ? "" : "must not be negative";

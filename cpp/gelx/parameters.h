@@ -93,6 +93,8 @@ public:
   static std::string positive(double v);
   static std::string non_negative(double v);
   static std::string at_least_one(int v);
+  /// A word among `words`: "must be a, b or c" otherwise.
+  static std::function<std::string(const std::string&)> one_of(std::vector<std::string> words);
 
 private:
   struct Entry

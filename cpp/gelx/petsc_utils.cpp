@@ -42,6 +42,13 @@ void set_default_option(const std::string& prefix, const std::string& name,
   }
 }
 
+void set_default_options(const std::string& prefix,
+                         const std::vector<std::pair<std::string, std::string>>& options)
+{
+  for (const auto& [name, value] : options)
+    set_default_option(prefix, name, value);
+}
+
 bool is_default_option(const std::string& option) { return defaults_set().count(option) > 0; }
 
 void set_linear_solver_defaults(const std::string& prefix)

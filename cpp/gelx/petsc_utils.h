@@ -7,6 +7,8 @@
 #include <petscksp.h>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace gelx
 {
@@ -39,6 +41,9 @@ PetscErrorCode guarded_callback(std::exception_ptr& error, Body&& body)
 /// in PETSC_OPTIONS or an options file), so that scene defaults never override the user.
 void set_default_option(const std::string& prefix, const std::string& name,
                         const std::string& value = "");
+/// The same for each (name, value) of `options`: a solver's defaults as one table.
+void set_default_options(const std::string& prefix,
+                         const std::vector<std::pair<std::string, std::string>>& options);
 
 /// Whether set_default_option set `option` (its name without the dash): a default that a
 /// user's other choices may leave unread (MUMPS for an iterative solve) is no mistake.

@@ -100,8 +100,28 @@ Run::Run(MPI_Comm comm, std::string scene, const Parameters& parameters,
       _checkpoints(std::make_unique<Checkpoints>(
           comm, std::filesystem::path(parameters.text("output")) / "checkpoint"))
 {
-  if (!_restart_from.empty())
-    _restart_record = Checkpoints::read_record(_restart_from);
+  // The solver options the run was started with (the command line's, before the scene sets
+  // its defaults): a checkpoint keeps them, so that a restart continues with the same
+  // solvers (the restart's own command line wins)
+  _given_petsc_options = petsc_options();
+  if (_restart_from.empty())
+    return;
+  _restart_record = Checkpoints::read_record(_restart_from);
+  const nlohmann::json saved
+      = _restart_record.at("run").value("petsc_options", nlohmann::json::object());
+  for (const auto& [option, value] : saved.items())
+  {
+    const std::string flag = "-" + option;
+    PetscBool given;
+    GELX_PETSC(PetscOptionsHasName(nullptr, nullptr, flag.c_str(), &given));
+    if (!given)
+    {
+      const std::string text = value.is_null() ? "" : value.get<std::string>();
+      GELX_PETSC(PetscOptionsSetValue(nullptr, flag.c_str(),
+                                      value.is_null() ? nullptr : text.c_str()));
+      _given_petsc_options[option] = value;
+    }
+  }
 }
 
 Run::~Run() = default;
@@ -155,7 +175,9 @@ StepObserver Run::checkpoints()
       return;
     if (!_path_system)
       throw std::logic_error("Run::checkpoints: the path was not started with start_path");
-    nlohmann::json record = {{"parameters", _parameters.to_json()}, {"summary", summary}};
+    nlohmann::json record = {{"parameters", _parameters.to_json()},
+                             {"petsc_options", _given_petsc_options},
+                             {"summary", summary}};
     if (_results)
       record["results"] = _results->progress();
     _checkpoints->write(*_path_system, state, record);

@@ -30,7 +30,8 @@ class Checkpoints;
 /// path the observer checkpoints(), last; every --checkpoint_every steps it writes a
 /// checkpoint (checkpoint.h) into OUTPUT/checkpoint, with the parameters, the results
 /// written so far and `summary`. `--restart DIR` runs the scene again with the parameters of
-/// DIR's newest checkpoint: results(mesh) continues DIR's outputs after the checkpoint's
+/// DIR's newest checkpoint and the PETSc options it was started with (those the restart's
+/// command line does not set): results(mesh) continues DIR's outputs after the checkpoint's
 /// step, start_path(system) restores the system and returns the checkpoint's path state, and
 /// the driver continues the path from there.
 class Run
@@ -76,6 +77,7 @@ private:
   std::unique_ptr<ResultsWriter> _results;
   std::filesystem::path _restart_from; ///< the checkpoint continued, or empty
   nlohmann::json _restart_record;      ///< its state.json
+  nlohmann::json _given_petsc_options; ///< the options the run started with (checkpointed)
   std::unique_ptr<Checkpoints> _checkpoints;
   NonlinearSystem* _path_system = nullptr; ///< the system of start_path()
   bool _old_checkpoints_forgotten = false;

@@ -35,8 +35,7 @@ void BistripParameters::bind(Parameters& prm)
            "prestretched (natural size), S prestretched (bonded size); empty: 'B wxh, A wxh'");
   prm.bind("geometry", "ends", ends,
            "clamped (z = 0 encastred, z = L a rigid face moving along z) or free",
-           [](const std::string& e)
-           { return e == "clamped" || e == "free" ? "" : "must be clamped or free"; });
+           Parameters::one_of({"clamped", "free"}));
   prm.bind("material", "G", G, "shear modulus (MPa)", Parameters::positive);
   prm.bind("material", "K", K, "bulk modulus (MPa)", Parameters::positive);
   prm.bind("material", "rho", rho, "mass density (damped dynamics only)", Parameters::positive);

@@ -60,7 +60,8 @@ int main(int argc, char* argv[])
            "clamped-clamped)",
            gelx::Parameters::positive);
   prm.bind("analysis", "method", loading.method,
-           "path: dynamics (first-order viscous flow) or inertia (equation of motion)");
+           "path: dynamics (first-order viscous flow) or inertia (equation of motion)",
+           gelx::Parameters::one_of({"dynamics", "inertia"}));
 
   return gelx::run_program(argc, argv, "gelx-buckling-dynamics", prm, [&](gelx::Run& run)
   {
@@ -76,9 +77,6 @@ int main(int argc, char* argv[])
                    {"critical_load", P_cr},
                    {"imperfection_amplitude", loading.imperfection * p.tx}};
 
-    if (loading.method != "dynamics" && loading.method != "inertia")
-      throw gelx::InputError("--method must be dynamics or inertia, not '" + loading.method
-                             + "'");
 
     // 3. Time scales for the default column at rho = 1 (tests/damped_dynamics.cpp explains
     //    them): its first bending period is 540, the loading time 37 of them. The flow's

@@ -23,15 +23,9 @@ void ColumnParameters::bind(Parameters& prm)
   prm.bind("geometry", "ny", cells[1], "box cells across ty", Parameters::at_least_one);
   prm.bind("geometry", "nz", cells[2], "box cells along L", Parameters::at_least_one);
   prm.bind("geometry", "ends", ends, "clamped-free or clamped-clamped",
-           [](const std::string& v)
-           {
-             return v == "clamped-free" || v == "clamped-clamped"
-                        ? ""
-                        : "must be clamped-free or clamped-clamped";
-           });
+           Parameters::one_of({"clamped-free", "clamped-clamped"}));
   prm.bind("geometry", "base", base, "the end z = 0: clamped, or sliding (in its plane)",
-           [](const std::string& v)
-           { return v == "clamped" || v == "sliding" ? "" : "must be clamped or sliding"; });
+           Parameters::one_of({"clamped", "sliding"}));
   prm.bind("material", "G", G, "shear modulus", Parameters::positive);
   prm.bind("material", "nu", nu, "Poisson's ratio",
            [](double v) { return v > -1 && v < 0.5 ? "" : "must be in (-1, 0.5)"; });

@@ -44,8 +44,7 @@ int main(int argc, char* argv[])
   prm.bind("geometry", "D", g.D, "cell width across the fiber (nm, > d)",
            gelx::Parameters::positive);
   prm.bind("geometry", "cell", g.cell, "eighth: 1/8 cell with mirror planes; full: periodic",
-           [](const std::string& v)
-           { return v == "eighth" || v == "full" ? "" : "must be eighth or full"; });
+           gelx::Parameters::one_of({"eighth", "full"}));
   prm.bind("mesh", "h_fiber", g.h_fiber, "mesh size on the fiber (nm)",
            gelx::Parameters::positive);
   prm.bind("mesh", "h_far", g.h_far, "mesh size away from the fiber (nm)",

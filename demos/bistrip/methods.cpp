@@ -1,0 +1,215 @@
+#include "methods.h"
+
+#include <gelx/arclength.h>
+#include <gelx/dynamics.h>
+#include <gelx/inertia.h>
+#include <gelx/newton.h>
+#include <gelx/petsc_utils.h>
+#include <gelx/progress.h>
+
+namespace gelx::scenes
+{
+namespace
+{
+/// The solver defaults of each method, for the default strip (the user's options win). Time
+/// in s with the density of rubber (rho = 1e-9 t/mm^3 in mm, MPa units); the bonded strip's
+/// first free vibration has a period of 0.0206 s (SLEPc, 40 slabs; README).
+void set_method_defaults(const std::string& method)
+{
+  if (method == "dynamics")
+  {
+    // The flow: c = 1/s relaxes the first bending mode within milliseconds, so a loading
+    // time of 1 s is quasi-static wherever the path is stable
+    set_default_options("dynamics_", {{"loading_time", "1"},
+                                      {"hold_time", "0.05"},
+                                      {"damping", "1"},
+                                      {"ts_rtol", "1e-3"},
+                                      {"ts_atol", "1e-3"}});
+  }
+  else if (method == "inertia")
+  {
+    // The equation of motion over the same loading time (50 periods of the first mode).
+    // Fixed steps of 1 ms (20 per period): TSALPHA2's error estimate weighs the velocities'
+    // error with the displacements' tolerances, and its adaptive steps fell to microseconds
+    // at 28.5 cm, long before the strip buckles (measured). rho_inf = 0.5 and a Rayleigh mass
+    // damping of 30/s (5 % of critical on the first mode, a / (2 omega_1)) take out what
+    // the steps do not resolve and the energy the snap into helices releases: without them
+    // (2 ms, rho_inf = 0.8) the run went through the first perversion and then diverged
+    // (kinetic energy 1e153, measured)
+    set_default_options("inertial_", {{"loading_time", "1"},
+                                      {"hold_time", "0.05"},
+                                      {"ts_adapt_type", "none"},
+                                      {"dt", "1e-3"},
+                                      {"ts_alpha_radius", "0.5"},
+                                      {"rayleigh_mass", "30"}});
+  }
+  else if (method == "arclength")
+  {
+    set_default_options("arclength_", {{"ds", "20"}, {"ds_max", "200"}});
+  }
+}
+
+/// The end from its distance now to `to`, as a load of amplitude 0 to 1
+std::function<void(double)> move_end(Bistrip& strip, double to)
+{
+  const double from = strip.end_distance();
+  return [&strip, from, to](double amplitude)
+  { strip.set_end_distance(from + amplitude * (to - from)); };
+}
+} // namespace
+
+void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const BistripAnalysis& a,
+                 PathRecord& record)
+{
+  NonlinearProblem& problem = strip.problem();
+  set_method_defaults(a.method);
+  const double travel = p.L - a.end_distance;
+  // One progress line per step: the end distance, the end force
+  const ProgressLine::Options progress_options{
+      .load_name = "end distance",
+      .load = [&](const StepRecord&) { return strip.end_distance(); },
+      .quantity = [&] { return quantity_text("end force", record.end_force()); }};
+
+  if (a.method == "arclength")
+  {
+    // Continuation in the end shortening: the Dirichlet values follow the load factor, and
+    // ArcLength's dR/dlambda of the lifted residual carries them
+    ArcLength continuation(run.comm(), problem,
+                           [&](double shortening) { strip.set_end_distance(p.L - shortening); });
+    PathState path;
+    ProgressLine::Options arclength_progress = progress_options;
+    arclength_progress.fraction = [&](const StepRecord& pt) { return pt.load / travel; };
+    continuation.run(
+        path, a.max_steps,
+        {[&](const StepRecord& pt, PathState&)
+         {
+           record.step_done({{"step", pt.step},
+                             {"arc_length", pt.arc_length},
+                             {"iterations", pt.newton.iterations},
+                             {"cutbacks", pt.cutbacks},
+                             {"wall_time", pt.wall_time}},
+                            0.0, 0.0, pt.load >= travel);
+         },
+         ProgressLine(run.comm(), arclength_progress)},
+        [&](const StepRecord& pt) { return pt.load >= travel; });
+    run.summary["arclength_steps"] = path.step;
+    if (strip.end_distance() > a.end_distance)
+      throw ConvergenceError("arc-length stopped at end distance "
+                             + std::to_string(strip.end_distance()) + " mm after "
+                             + std::to_string(path.step) + " steps");
+    return;
+  }
+
+  // In time: a leg drives `load` from 0 to 1 on the smooth step (options prefix `prefix`,
+  // summary under `key`); `dissipated_before` is the energy damping dissipated on the legs
+  // before it (each leg's TS counts from 0). Returns the dissipation up to its end.
+  const bool inertia = a.method == "inertia";
+  // With inertia the path checkpoints after its steps and continues from a checkpoint
+  // (--restart): the integrator's state, and the record's in its scene state. Not the flow:
+  // TSBDF's history cannot be handed back to PETSc (dynamics.h)
+  const PathState start = inertia ? run.start_path(problem) : PathState{};
+  const bool resuming = start.step > 0;
+  const StepObserver checkpoints = inertia ? run.checkpoints() : StepObserver{};
+  auto drive = [&](std::function<void(double)> load, double dissipated_before,
+                   const std::string& key, const std::string& prefix)
+  {
+    ProgressLine progress(run.comm(), progress_options);
+    auto observe = [&](const DynamicsRecord& r, const DynamicsSummary& so_far, double end_time)
+    {
+      // The flow's kinetic energy is a diagnostic of the regularised velocity, no term of
+      // its balance; with inertia it is one
+      record.step_done(r.to_json(), dissipated_before + r.dissipated_energy,
+                       inertia ? r.kinetic_energy : 0.0, r.time >= end_time - 1e-12);
+      run.summary[key] = so_far.to_json();
+      progress.print(r.step, strip.end_distance(), r.time / end_time);
+    };
+    DynamicsSummary summary;
+    if (inertia)
+    {
+      InertialDynamics dynamics(run.comm(), problem, *strip.mass_form(),
+                                [&] { return strip.strain_energy(); }, load, prefix);
+      const bool resume = resuming && start.scene.at("leg") == record.leg();
+      summary = dynamics.run(
+          {[&](const DynamicsRecord& r)
+           {
+             observe(r, dynamics.summary(), dynamics.end_time());
+             PathState state;
+             dynamics.save(state);
+             state.scene = record.state();
+             state.scene["dissipated_before"] = dissipated_before;
+             checkpoints(r.step, state);
+           }},
+          resume ? &start : nullptr);
+    }
+    else
+    {
+      DampedDynamics dynamics(run.comm(), problem, *strip.mass_form(),
+                              [&] { return strip.strain_energy(); }, load, prefix);
+      summary = dynamics.run({[&](const DynamicsRecord& r)
+                              { observe(r, dynamics.summary(), dynamics.end_time()); }});
+    }
+    run.summary[key] = summary.to_json();
+    return dissipated_before + summary.dissipated_energy;
+  };
+
+  if (a.bonding != "instant")
+  {
+    // Leg 0, the end held at L: a ramp builds the prestretch up over 1 s, at the path's
+    // damping. A quench leaves the bonded strip to buckle: under a fixed load the
+    // first-order dynamics c M u' = -R(u) is a gradient flow whose trajectory does not
+    // depend on c, only its time scale does (t / c), so c is chosen for the steps: the
+    // fastest modes grow at ~1e8/s for c = 1 (stretch 0.4), at a few per second for
+    // c = 1e8; 2000 s of it settle (Fig. 3.8a's pattern from the fastest-growing
+    // wavelengths; measured at nz = 60: after 200 s, 16 perversions and still 6 negative
+    // eigenvalues, from which the path at c = 1 needs microsecond steps). The balance of the
+    // legs after it starts from where it ends (the prestretch's own work is not the end
+    // force's)
+    const bool quench = a.bonding == "quench";
+    set_default_options("bonding_dynamics_", {{"loading_time", quench ? "2000" : "1"},
+                                              {"hold_time", "0.05"},
+                                              {"damping", quench ? "1e8" : "1"},
+                                              {"ts_rtol", "1e-3"},
+                                              {"ts_atol", "1e-3"}});
+    record.begin_leg(0);
+    drive([&](double s) { strip.set_prestretch_fraction(quench ? 1 : s); }, 0,
+          "bonding_dynamics", "bonding_dynamics_");
+  }
+  const std::string prefix = inertia ? "inertial_" : "dynamics_";
+  double dissipated = 0;
+  if (resuming)
+  {
+    // Continue the leg the checkpoint is in (the legs before it are done)
+    record.restore(start.scene);
+    dissipated = start.scene.at("dissipated_before");
+  }
+  else
+  {
+    if (inertia)
+    {
+      // The motion starts at rest from the bonded strip's static equilibrium at L: u = 0 is
+      // none (A's prestretch pulls on the clamps and contracts the section), and released
+      // from it the strip rang with 3.8 mJ of kinetic energy after the first 2 ms (measured)
+      NewtonSolver bonded(run.comm(), "bonded_newton_");
+      if (!bonded.solve(problem).converged)
+        throw ConvergenceError("the bonded strip's equilibrium at L did not converge");
+    }
+    record.begin_leg(1);
+  }
+  // Each leg's end moves from where the leg starts: L, then end_distance
+  if (record.leg() == 1)
+  {
+    strip.set_end_distance(p.L);
+    dissipated = drive(move_end(strip, a.end_distance), dissipated,
+                       inertia ? "inertial_dynamics" : "dynamics", prefix);
+  }
+  if (a.return_distance > 0)
+  {
+    if (record.leg() == 1)
+      record.begin_leg(2);
+    strip.set_end_distance(a.end_distance);
+    drive(move_end(strip, a.return_distance), dissipated,
+          inertia ? "return_inertial_dynamics" : "return_dynamics", prefix);
+  }
+}
+
+} // namespace gelx::scenes

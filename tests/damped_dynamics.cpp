@@ -213,9 +213,10 @@ int main(int argc, char* argv[])
     // 5. Energy balance of the first-order model, W = SE + ED. The work is integrated from the
     //    reactions at the accepted steps, ED from the velocities, both trapezoidal, so they
     //    agree to the time discretisation: measured 4.7e-5 at TS tolerances 1e-3 and 8.5e-6
-    //    at 1e-4; 1e-3 (ED left out would break it by ED / SE = 1.6e-3)
+    //    at 1e-4; 2e-4, four times the measured error, so that ED left out (off by
+    //    ED / SE = 1.6e-3) fails it eight times over (tried: it fails)
     checks.relative("work of the shortening against SE + ED", run.work,
-                    s.strain_energy + s.dissipated_energy, 1e-3);
+                    s.strain_energy + s.dissipated_energy, 2e-4);
 
     // 6. A static equilibrium: the residual R (no viscous force) at the final state against
     //    the internal forces, reactions included. The hold leaves exp(-hold omega^2 / c) of

@@ -12,8 +12,9 @@ Bounds, and why:
   reference's stretch at that pressure (the issue's bound; measured 0.17 %);
 - dynamics' end and arc-length's interpolated point agree to 1e-3 (the same discrete
   equilibrium; the interpolation between arc-length points is linear: measured 4e-6);
-- load stepping fails short of the maximum: its last pressure is below the reference maximum
-  (+0.5 %, the discretisation) and its stretch below the maximum's;
+- load stepping fails short of the maximum, but near it: its last pressure is below the
+  reference maximum (+0.5 %, the discretisation) and above 0.99 of it (a stepper that gave up
+  early would pass the rest; measured 0.9922), and its stretch below the maximum's;
 - the energy dissipated by the viscous forces equals the work of the out-of-balance pressure,
   int (p - p_eq(lambda)) dV over the recorded steps, p_eq the reference and V = Omega/3 (A
   lambda)^3 the cavity's volume in the sector's solid angle Omega, within 5 % (the
@@ -64,6 +65,9 @@ checks.require(f"load stepping stopped: {stepping['outcome']}",
 checks.require(f"load stepping's last pressure {stepping['last_pressure_over_G']:.5f} <= the "
                f"maximum {p_max:.5f} (+0.5 %)",
                stepping["last_pressure_over_G"] <= 1.005 * p_max)
+checks.require(f"load stepping got near the maximum: last pressure "
+               f"{stepping['last_pressure_over_G'] / p_max:.4f} of it >= 0.99",
+               stepping["last_pressure_over_G"] >= 0.99 * p_max)
 checks.require(f"load stepping's last stretch {stepping['last_stretch']:.4f} short of the "
                f"maximum's {la_max:.4f}", stepping["last_stretch"] < la_max)
 

@@ -6,8 +6,9 @@ shrinking its steps on a path that is no longer the spherical one.
 Asserted, against quantities computed here:
 - the maximum p/G within 2 % of the incompressible closed form (thin wall, B/A = 1.1, at
   h = 0.1: one to two P2 tetrahedra through the wall, K/G = 1000; measured 0.7 %);
-- one negative tangent eigenvalue on the falling branch before the departure (the limit
-  point's: the spherical branch itself is unstable under pressure control);
+- one negative tangent eigenvalue on the falling branch before the departure, over at least
+  three points (the limit point's: the spherical branch itself is unstable under pressure
+  control);
 - the run stopped on the falling branch, where the inner radius varies by more than 5 % over
   the surface, recomputed here from the last step's displacement (fields.xdmf);
 - the departure's shape is odd in z, the pear mode the octant cannot take: a fit of the inner
@@ -45,8 +46,10 @@ checks.require(f"on the falling branch: p/G {lost['pressure_over_G']:.5f} < the 
 k_peak = max(range(len(rows)), key=lambda k: float(rows[k]["pressure_over_G"]))
 falling = [int(r["negative_eigenvalues"]) for r in rows[k_peak + 1:]
            if float(r["pressure_over_G"]) < 0.99 * s["p_max_over_G"]]
-checks.require(f"one negative eigenvalue on the falling branch ({len(falling)} points)",
-               len(falling) > 0 and all(n == 1 for n in falling[:-1]))
+# At least three points, so that "all but the last" says something (with one or two it held
+# vacuously; measured 29)
+checks.require(f"one negative eigenvalue on the falling branch ({len(falling)} points >= 3)",
+               len(falling) >= 3 and all(n == 1 for n in falling[:-1]))
 
 series = FieldSeries(out)
 x, _ = series.mesh(-1)

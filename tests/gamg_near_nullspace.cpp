@@ -123,13 +123,15 @@ int main(int argc, char* argv[])
       const std::string tag = "h = " + std::to_string(h).substr(0, 4) + " (" +
                               std::to_string(dofs) + " dofs): ";
       // GMRES stops on the preconditioned residual, |B r| <= 1e-10 |B b|, which bounds the
-      // error by cond(BK) 1e-10. The estimate of cond(BK) (singular values of GMRES's
-      // Hessenberg matrix) is a lower bound, so the tolerance is if anything too strict.
+      // error by cond(BK) 1e-10: 1.4e-9 to 1.6e-8 with the estimates here (14 to 158, from
+      // GMRES's Hessenberg matrix). The errors are 4.7e-10 to 1.3e-9 (measured, 1 and 2
+      // ranks): a fixed 5e-9, four times the largest, not the solve's own estimate (with
+      // -ksp_rtol 1e-8 in place of 1e-10 the test fails)
       for (const auto& [name, s] : {std::pair{"with", with_modes}, {"without", without_modes}})
         checks.absolute(tag + name + " rigid-body modes, " + std::to_string(s.iterations) +
                             " GMRES iterations, cond(BK) ~ " + std::to_string(s.condition) +
                             "; |du - du_LU| / |du_LU|",
-                        s.relative_error, 0.0, 1e-10 * s.condition);
+                        s.relative_error, 0.0, 5e-9);
       checks.require(tag + "the rigid-body modes make GAMG the better preconditioner: " +
                          std::to_string(with_modes.iterations) + " < " +
                          std::to_string(without_modes.iterations) + " iterations, cond(BK) " +

@@ -17,7 +17,8 @@ is lower (a tristrip with a compressed, wider middle strip: measured 0.73 %).
 
 A clamped run (Table 3.1) checks:
 - the buckling modes alternate mirror-symmetric / antisymmetric about z = L/2, modes 1, 3, 5
-  symmetric (the thesis, Fig. 3.1c), each to 1e-6 (the eigensolver's tolerance is 1e-8);
+  symmetric (the thesis, Fig. 3.1c), each to 1e-6 (the eigensolver's tolerance is 1e-8), and
+  its complementary residual 2 to 1e-6;
 - before the first critical shortening the strip stays straight and each strip is in
   uniaxial stress: the end force equals that of the uniaxial closed form of Eq. 3.1 (A at stretch
   stretch d/L from its natural section w h, B at d/L), computed here, within 0.5 % (the clamped
@@ -143,6 +144,12 @@ for r in eigen:
                        else "mirror_antisymmetry"])
     checks.require(f"mode {k} is {expected[k - 1]} (residual {residual:.2e} <= 1e-6)",
                    residual <= 1e-6)
+    # and not the other: |v -+ S v| / |v| = 2 for the complementary residual, so that a
+    # mirror S that left every mode unchanged (or a residual that is always 0) fails
+    other = float(r["mirror_antisymmetry" if expected[k - 1] == "mirror-symmetric"
+                    else "mirror_asymmetry"])
+    checks.require(f"mode {k}: the complementary residual {other:.12f} is 2 to 1e-6",
+                   abs(other - 2) <= 1e-6)
 shortening = [float(r["critical_shortening"]) for r in eigen]
 coarse_run = (prm["nz"] == 40 and prm["degree"] == 2 and prm["w"] == 5
               and prm["end_distance"] == 245)

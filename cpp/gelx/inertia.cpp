@@ -221,8 +221,8 @@ void InertialDynamics::set_stage_time(double t_stage)
   // off g by 2 g(t_a) - g(t_n) - g(t_n+1) = -g'' dt^2 / 4 plus the previous step's error with
   // its sign changed: an undamped alternation that the Newmark update turns into an
   // acceleration as large as g'' in those rows, felt by their free neighbours through the
-  // mass. TSAlpha_Restart's
-  // backward-Euler half steps run with alpha_f = 1: the amplitude at the stage time.
+  // mass. TSAlpha_Restart's backward-Euler half steps run with alpha_f = 1: the amplitude
+  // at the stage time.
   PetscReal alpha_m, alpha_f, gamma, beta, dt;
   GELX_PETSC(TSAlpha2GetParams(_ts, &alpha_m, &alpha_f, &gamma, &beta));
   GELX_PETSC(TSGetTimeStep(_ts, &dt));

@@ -6,6 +6,7 @@
 #include <gelx/newton.h>
 #include <gelx/petsc_utils.h>
 #include <gelx/progress.h>
+#include <utility>
 
 namespace gelx::scenes
 {
@@ -74,6 +75,7 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
   {
     // Continuation in the end shortening: the Dirichlet values follow the load factor, and
     // ArcLength's dR/dlambda of the lifted residual carries them
+    record.begin_leg(1);
     ArcLength continuation(run.comm(), problem,
                            [&](double shortening) { strip.set_end_distance(p.L - shortening); });
     PathState path;
@@ -109,6 +111,8 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
   // TSBDF's history cannot be handed back to PETSc (dynamics.h)
   const PathState start = inertia ? run.start_path(problem) : PathState{};
   const bool resuming = start.step > 0;
+  // The integrator's state of the checkpoint, for the first leg driven (the one it is in)
+  const PathState* resume = resuming ? &start : nullptr;
   const StepObserver checkpoints = inertia ? run.checkpoints() : StepObserver{};
   auto drive = [&](std::function<void(double)> load, double dissipated_before,
                    const std::string& key, const std::string& prefix)
@@ -128,7 +132,6 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
     {
       InertialDynamics dynamics(run.comm(), problem, *strip.mass_form(),
                                 [&] { return strip.strain_energy(); }, load, prefix);
-      const bool resume = resuming && start.scene.at("leg") == record.leg();
       summary = dynamics.run(
           {[&](const DynamicsRecord& r)
            {
@@ -139,7 +142,7 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
              state.scene["dissipated_before"] = dissipated_before;
              checkpoints(r.step, state);
            }},
-          resume ? &start : nullptr);
+          std::exchange(resume, nullptr));
     }
     else
     {

@@ -70,7 +70,6 @@ PathRecord::PathRecord(Run& run, ResultsWriter& results, FieldSet& fields, Bistr
     : _run(run), _results(results), _fields(fields), _strip(strip), _p(p), _a(a),
       _prebuckled_distance(prebuckled_distance), _next_output(a.output_every)
 {
-  begin_leg(1);
 }
 
 void PathRecord::begin_leg(int leg)

@@ -59,7 +59,8 @@ public:
              const BistripParameters& p, const BistripAnalysis& a, double prebuckled_distance);
 
   /// A leg begins: 0 the bonding at L (no balance), 1 the end driven to end_distance (the
-  /// energy balance counts from the strips' energies now), 2 the end driven back out.
+  /// energy balance counts from the strips' energies now), 2 the end driven back out. Every
+  /// path begins one (or restores a record, restore()) before its first step.
   void begin_leg(int leg);
 
   /// After every step: `method_row` what the path's method says of it, `dissipated` the

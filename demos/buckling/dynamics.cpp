@@ -85,15 +85,12 @@ int main(int argc, char* argv[])
     //    that the column settles in the hold of 7 periods, and rho_inf = 0.8 removes what
     //    the steps do not resolve (the axial modes)
     const std::string prefix = loading.method == "inertia" ? "inertial_" : "dynamics_";
-    gelx::set_default_option(prefix, "loading_time", "2e4");
-    gelx::set_default_option(prefix, "hold_time", "4e3");
-    gelx::set_default_option(prefix, "ts_rtol", "1e-3");
-    gelx::set_default_option(prefix, "ts_atol", "1e-3");
+    gelx::set_default_options(prefix, {{"loading_time", "2e4"},
+                                       {"hold_time", "4e3"},
+                                       {"ts_rtol", "1e-3"},
+                                       {"ts_atol", "1e-3"}});
     if (loading.method == "inertia")
-    {
-      gelx::set_default_option(prefix, "rayleigh_mass", "1.2e-3");
-      gelx::set_default_option(prefix, "ts_alpha_radius", "0.8");
-    }
+      gelx::set_default_options(prefix, {{"rayleigh_mass", "1.2e-3"}, {"ts_alpha_radius", "0.8"}});
     else
       gelx::set_default_option(prefix, "damping", "1e-3");
     auto strain_energy = [&] { return column.strain_energy(); };

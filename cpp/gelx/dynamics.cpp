@@ -23,6 +23,18 @@ double smooth_step(double t, double loading_time)
   return s * s * s * (10 - 15 * s + 6 * s * s);
 }
 
+double smooth_step_derivative(double t, double loading_time, int order)
+{
+  const double s = t / loading_time;
+  if (s <= 0 || s >= 1)
+    return 0;
+  if (order == 1)
+    return 30 * s * s * (1 - s) * (1 - s) / loading_time;
+  if (order == 2)
+    return 60 * s * (1 - s) * (1 - 2 * s) / (loading_time * loading_time);
+  throw std::invalid_argument("smooth_step_derivative: order 1 or 2");
+}
+
 nlohmann::json DynamicsSummary::to_json() const
 {
   nlohmann::json j = {{"steps", steps},
@@ -40,6 +52,8 @@ nlohmann::json DynamicsSummary::to_json() const
                       {"verdict", quasi_static() ? "quasi-static" : "not quasi-static"}};
   if (!std::isnan(external_work))
     j.update({{"external_work", external_work}, {"balance_residual", balance_residual}});
+  if (integrator.is_object())
+    j.update(integrator);
   return j;
 }
 
@@ -59,6 +73,8 @@ nlohmann::json DynamicsRecord::to_json() const
                       {"wall_time", step.wall_time}};
   if (!std::isnan(external_work))
     j.update({{"external_work", external_work}, {"balance_residual", balance_residual}});
+  if (!std::isnan(stable_step))
+    j["stable_step"] = stable_step;
   return j;
 }
 

@@ -24,6 +24,9 @@ namespace gelx
 /// SMOOTH STEP amplitude): zero velocity and acceleration at both ends of the ramp, so that
 /// the loading starts and stops without a jerk that would excite the body.
 double smooth_step(double t, double loading_time);
+/// Its first (order 1) or second (order 2) time derivative: the velocity and acceleration of
+/// a prescribed motion g0 + A(t) dg.
+double smooth_step_derivative(double t, double loading_time, int order);
 
 // What first- and second-order dynamics (DampedDynamics, InertialDynamics) share
 
@@ -108,6 +111,8 @@ struct DynamicsRecord
   /// error
   double external_work = NAN;
   double balance_residual = NAN;
+  /// Explicit central differences only (NaN otherwise): the stable-step estimate in force
+  double stable_step = NAN;
   /// KE / SE and ED / SE (NaN while SE = 0)
   double kinetic_ratio() const { return kinetic_energy / strain_energy; }
   double dissipation_ratio() const { return dissipated_energy / strain_energy; }
@@ -130,6 +135,9 @@ struct DynamicsSummary
   double dissipated_energy = 0;
   double external_work = NAN;    ///< InertialDynamics only, as in DynamicsRecord
   double balance_residual = NAN; ///< InertialDynamics only, as in DynamicsRecord
+  /// What the integrator says about its scheme and mass (InertialDynamics: scheme, mass,
+  /// lumping, the added mass of mass scaling, the smallest stable step), merged into to_json
+  nlohmann::json integrator;
   /// ED / SE at the end, against its bound
   double dissipation_ratio = 0, dissipation_bound = 0;
   /// The largest KE / SE over the steps (with SE > 0), against its bound

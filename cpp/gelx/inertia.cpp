@@ -1,4 +1,5 @@
 #include "inertia.h"
+#include "central_difference.h"
 #include "mixed.h"
 #include "parameters.h"
 #include "petsc_utils.h"
@@ -99,6 +100,11 @@ PetscErrorCode post_step(TS ts)
   return guarded_callback(d.callback_error, [&] { d.check_step_size(); });
 }
 
+PetscErrorCode prescribe(InertialDynamics& d, double t, Vec u, Vec v, Vec a)
+{
+  return guarded_callback(d.callback_error, [&] { d.prescribe(t, u, v, a); });
+}
+
 OwnedVec copy_of(Vec v)
 {
   Vec c;
@@ -123,11 +129,31 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
 {
   const double a = positive_option(prefix, "rayleigh_mass", 0.0, true);
   const double b = positive_option(prefix, "rayleigh_stiffness", 0.0, true);
+  _rayleigh_mass = a;
+  // The scheme decides the mass: read TS's type before TS exists
+  register_central_difference();
+  _explicit = string_option(prefix, "ts_type", "alpha2") == TSCENTRALDIFFERENCE;
+  const std::string mass_kind = string_option(prefix, "mass", _explicit ? "lumped" : "consistent");
+  if (mass_kind != "lumped" && mass_kind != "consistent")
+    throw InputError("-" + prefix + "mass must be consistent or lumped, not " + mass_kind);
+  if (_explicit && mass_kind != "lumped")
+    throw InputError("-" + prefix + "mass consistent: explicit central differences need the "
+                     "lumped mass (a consistent one would need a solve per step)");
+  if (_explicit && b > 0)
+    throw InputError("-" + prefix + "rayleigh_stiffness: explicit central differences take "
+                     "mass-proportional damping only (b K would need a solve per step)");
+  _prescribed = system.prescribed_rows();
   _mass = assemble_system_mass(system, mass_form, "InertialDynamics");
+  if (mass_kind == "lumped")
+  {
+    Mat lumped = lumped_mass(_mass, _prescribed, string_option(prefix, "lumping", "auto"),
+                             _lumping);
+    GELX_PETSC(MatDestroy(&_mass));
+    _mass = lumped;
+  }
   _mass_D = without_prescribed_rows(system, _mass);
   PetscInt first_row;
   GELX_PETSC(MatGetOwnershipRange(_mass, &first_row, nullptr));
-  _prescribed = system.prescribed_rows();
   if (a > 0 || b > 0)
   {
     // C = a M + b K0, K0 the tangent at the initial state with the prescribed rows and
@@ -160,6 +186,38 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
   _previous_reaction.reset(system.create_vector());
   _du.reset(system.create_vector());
 
+  if (_explicit)
+  {
+    _step_fraction = positive_option(prefix, "stable_step_fraction", 0.9);
+    _stable_step_every = int_option(prefix, "stable_step_every", 100);
+    if (_step_fraction > 1 || _stable_step_every < 1)
+      throw InputError("-" + prefix + "stable_step_fraction must be in (0, 1] and -" + prefix
+                       + "stable_step_every at least 1");
+    _fixed_step = positive_option(prefix, "dt", 0.0, true);
+    measure_prescribed_motion();
+    Vec m;
+    GELX_PETSC(MatCreateVecs(_mass, &m, nullptr));
+    GELX_PETSC(MatGetDiagonal(_mass, m));
+    _lumped_mass.reset(m);
+    if (const double dt = positive_option(prefix, "mass_scaling_step", 0.0, true); dt > 0)
+    {
+      Mat K = system.create_matrix();
+      system.tangent(K);
+      _added_mass = scale_mass_for_step(K, _lumped_mass.get(), _prescribed, dt, _step_fraction);
+      GELX_PETSC(MatDestroy(&K));
+    }
+    _mass_diagonal.reset(system.create_vector());
+    _damping_diagonal.reset(system.create_vector());
+    set_lumped_mass(_lumped_mass.get());
+  }
+  if (!_lumping.empty())
+  {
+    Vec ones = system.create_vector();
+    GELX_PETSC(VecSet(ones, 1.0));
+    _total_mass = quadratic_form(_mass_D, ones, _work.get()) - _added_mass;
+    GELX_PETSC(VecDestroy(&ones));
+  }
+
   // Defaults (the user's options win), then TS, SNES and KSP from the options database
   set_time_stepping_defaults(prefix, "alpha2", _loading_time, _hold_time, _loading_time / 100);
 
@@ -180,14 +238,20 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
   reject_failed_line_searches(_ts);
   PetscBool alpha2;
   GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSALPHA2, &alpha2));
-  if (!alpha2)
-    throw InputError("-" + prefix + "ts_type must be alpha2 (the second-order integrator "
-                     "whose state gelx saves)");
+  if (!alpha2 && !_explicit)
+    throw InputError("-" + prefix + "ts_type must be alpha2 or " + TSCENTRALDIFFERENCE
+                     + " (the second-order integrators whose state gelx saves)");
+  if (_explicit)
+    central_difference_set_mass(_ts, _mass_diagonal.get(), _rayleigh_mass > 0
+                                                               ? _damping_diagonal.get()
+                                                               : nullptr,
+                                [this](double t, Vec u, Vec v, Vec a)
+                                { return gelx::prescribe(*this, t, u, v, a); });
   TSAdapt adapt;
   GELX_PETSC(TSGetAdapt(_ts, &adapt));
   PetscBool fixed;
   GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(adapt), TSADAPTNONE, &fixed));
-  if (fixed)
+  if (fixed && !_explicit)
     GELX_PETSC(TSGetTimeStep(_ts, &_fixed_step));
   SNES snes;
   GELX_PETSC(TSGetSNES(_ts, &snes));
@@ -233,8 +297,15 @@ void InertialDynamics::set_stage_time(double t_stage)
 
 void InertialDynamics::form_function(double t, Vec u, Vec v, Vec a, Vec F)
 {
-  set_stage_time(t);
+  if (_explicit)
+    set_time(t); // central differences evaluate at the step's end
+  else
+    set_stage_time(t);
   _system.set_state(u);
+  if (!_system.admissible() && _explicit)
+    throw ConvergenceError("explicit central differences reached an inadmissible state "
+                           "(det F <= 0) at t = " + std::to_string(t)
+                           + ": a step above the stable step, or the body crushed");
   if (!_system.admissible())
   {
     SNES snes;
@@ -281,6 +352,8 @@ void InertialDynamics::reactions(Vec u, Vec v, Vec a, Vec r)
 
 void InertialDynamics::pre_step()
 {
+  if (_explicit)
+    choose_explicit_step();
   // A resumed run continues from the state save() wrote: TSALPHA2 must not compute a new
   // start (TSAlpha_Restart) but take it
   if (_resuming)
@@ -301,10 +374,10 @@ void InertialDynamics::pre_stage()
   // t = 0. (With rho_inf = 1, the trapezoidal rule, u and v do not depend on the
   // acceleration: alpha_m = 1/2 and beta = 1/4 cancel it from the stage equation; with
   // rho_inf < 1 they do.)
+  if (!_initial_acceleration)
+    return; // not the first step, or central differences (which solve their own start)
   PetscReal alpha_m, alpha_f, gamma, beta;
   GELX_PETSC(TSAlpha2GetParams(_ts, &alpha_m, &alpha_f, &gamma, &beta));
-  if (!_initial_acceleration)
-    return;
   if (alpha_m == 1 && alpha_f == 1 && gamma == 1 && beta == 0.5)
     return;
   Alpha2State& alpha = alpha2_state(_ts);
@@ -341,7 +414,7 @@ void InertialDynamics::accepted(int step, double t, Vec u)
     return;
   }
   _initial_acceleration.reset(); // the first step is taken
-  const Alpha2State& alpha = alpha2_state(_ts);
+  const StepVectors alpha = step_vectors();
   Vec v = _ts->vec_dot;
   PetscReal t_previous;
   GELX_PETSC(TSGetPrevTime(_ts, &t_previous));
@@ -354,12 +427,13 @@ void InertialDynamics::accepted(int step, double t, Vec u)
     if (!_have_previous_reaction)
     {
       set_time(t_previous);
-      reactions(alpha.X0, alpha.V0, alpha.A0, _previous_reaction.get());
+      reactions(alpha.previous_unknowns, alpha.previous_velocity, alpha.previous_acceleration,
+                _previous_reaction.get());
       _have_previous_reaction = true;
     }
     set_time(t);
-    reactions(u, v, alpha.A1, _reaction.get());
-    GELX_PETSC(VecWAXPY(_du.get(), -1.0, alpha.X0, u));
+    reactions(u, v, alpha.acceleration, _reaction.get());
+    GELX_PETSC(VecWAXPY(_du.get(), -1.0, alpha.previous_unknowns, u));
     GELX_PETSC(VecAXPY(_reaction.get(), 1.0, _previous_reaction.get()));
     PetscScalar work;
     GELX_PETSC(VecDot(_reaction.get(), _du.get(), &work));
@@ -373,7 +447,7 @@ void InertialDynamics::accepted(int step, double t, Vec u)
   _system.commit();
   if (_damping)
   {
-    GELX_PETSC(VecAXPBYPCZ(_mean_velocity.get(), 0.5, 0.5, 0.0, v, alpha.V0));
+    GELX_PETSC(VecAXPBYPCZ(_mean_velocity.get(), 0.5, 0.5, 0.0, v, alpha.previous_velocity));
     _summary.dissipated_energy += dt * quadratic_form(_damping, _mean_velocity.get(), _work.get());
   }
 
@@ -383,6 +457,7 @@ void InertialDynamics::accepted(int step, double t, Vec u)
   record.strain_energy = _strain_energy();
   record.kinetic_energy = 0.5 * quadratic_form(_mass, v, _work.get());
   record.dissipated_energy = _summary.dissipated_energy;
+  record.stable_step = _stable_step;
   if (_has_reactions)
   {
     record.external_work = _summary.external_work;
@@ -399,6 +474,8 @@ void InertialDynamics::accepted(int step, double t, Vec u)
   _summary.strain_energy = record.strain_energy;
   _summary.kinetic_energy = record.kinetic_energy;
   _summary.balance_residual = record.balance_residual;
+  if (_explicit)
+    _summary.integrator["smallest_stable_step"] = _smallest_stable_step;
   _summary.dissipation_ratio = record.dissipation_ratio();
   if (record.strain_energy > 0)
     _summary.kinetic_ratio = std::max(_summary.kinetic_ratio, record.kinetic_ratio());
@@ -443,12 +520,152 @@ OwnedVec InertialDynamics::consistent_acceleration(Vec v)
   return a;
 }
 
+InertialDynamics::StepVectors InertialDynamics::step_vectors() const
+{
+  if (_explicit)
+  {
+    const CentralDifferenceState cd = central_difference_state(_ts);
+    return {cd.previous_unknowns, cd.previous_velocity, cd.previous_acceleration,
+            cd.acceleration};
+  }
+  const Alpha2State& alpha = alpha2_state(_ts);
+  return {alpha.X0, alpha.V0, alpha.A0, alpha.A1};
+}
+
+void InertialDynamics::set_lumped_mass(Vec m)
+{
+  // M = diag(m), M_D with the prescribed rows zeroed, C = a M; TS's diagonals: M_D with 1
+  // where prescribed (those rows' F = u - g is zero: any divisor), a M_D
+  OwnedVec free = copy_of(m);
+  PetscScalar* values;
+  GELX_PETSC(VecGetArray(free.get(), &values));
+  for (PetscInt r : _prescribed)
+    values[r] = 0;
+  GELX_PETSC(VecRestoreArray(free.get(), &values));
+  GELX_PETSC(MatDiagonalSet(_mass, m, INSERT_VALUES));
+  GELX_PETSC(MatDiagonalSet(_mass_D, free.get(), INSERT_VALUES));
+  GELX_PETSC(VecAXPBY(_damping_diagonal.get(), _rayleigh_mass, 0.0, free.get()));
+  if (_damping)
+  {
+    GELX_PETSC(MatDiagonalSet(_damping, _damping_diagonal.get(), INSERT_VALUES));
+    GELX_PETSC(MatDiagonalSet(_damping_D, _damping_diagonal.get(), INSERT_VALUES));
+  }
+  GELX_PETSC(VecCopy(free.get(), _mass_diagonal.get()));
+  GELX_PETSC(VecGetArray(_mass_diagonal.get(), &values));
+  for (PetscInt r : _prescribed)
+    values[r] = 1;
+  GELX_PETSC(VecRestoreArray(_mass_diagonal.get(), &values));
+  if (m != _lumped_mass.get())
+    GELX_PETSC(VecCopy(m, _lumped_mass.get()));
+}
+
+void InertialDynamics::measure_prescribed_motion()
+{
+  // g(A) read off the residual's prescribed rows, x - g, at amplitudes 0, 1 and 1/2
+  Vec x = _system.unknowns();
+  OwnedVec r(_system.create_vector());
+  std::array<std::vector<double>, 3> g;
+  const std::array<double, 3> amplitudes{0.0, 1.0, 0.5};
+  for (int k = 0; k < 3; ++k)
+  {
+    _apply_load(amplitudes[k]);
+    _system.unknowns_changed();
+    _system.residual(r.get());
+    const PetscScalar *xv, *rv;
+    GELX_PETSC(VecGetArrayRead(x, &xv));
+    GELX_PETSC(VecGetArrayRead(r.get(), &rv));
+    for (PetscInt i : _prescribed)
+      g[k].push_back(xv[i] - rv[i]);
+    GELX_PETSC(VecRestoreArrayRead(r.get(), &rv));
+    GELX_PETSC(VecRestoreArrayRead(x, &xv));
+  }
+  _apply_load(0.0);
+  _system.unknowns_changed();
+  double off = 0, size = 0;
+  for (std::size_t i = 0; i < g[0].size(); ++i)
+  {
+    off = std::max(off, std::abs(g[2][i] - 0.5 * (g[0][i] + g[1][i])));
+    size = std::max({size, std::abs(g[0][i]), std::abs(g[1][i])});
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &off, 1, MPI_DOUBLE, MPI_MAX, _comm);
+  MPI_Allreduce(MPI_IN_PLACE, &size, 1, MPI_DOUBLE, MPI_MAX, _comm);
+  if (off > 1e-12 * std::max(size, 1e-300))
+    throw InputError("explicit central differences need prescribed displacements affine in "
+                     "the load amplitude; this scene's are off by "
+                     + std::to_string(off / size) + " of their size at A = 1/2");
+  _prescribed_base.reset(_system.create_vector());
+  _prescribed_range.reset(_system.create_vector());
+  GELX_PETSC(VecSet(_prescribed_base.get(), 0.0));
+  GELX_PETSC(VecSet(_prescribed_range.get(), 0.0));
+  PetscScalar *base, *range;
+  GELX_PETSC(VecGetArray(_prescribed_base.get(), &base));
+  GELX_PETSC(VecGetArray(_prescribed_range.get(), &range));
+  for (std::size_t i = 0; i < _prescribed.size(); ++i)
+  {
+    base[_prescribed[i]] = g[0][i];
+    range[_prescribed[i]] = g[1][i] - g[0][i];
+  }
+  GELX_PETSC(VecRestoreArray(_prescribed_range.get(), &range));
+  GELX_PETSC(VecRestoreArray(_prescribed_base.get(), &base));
+}
+
+void InertialDynamics::prescribe(double t, Vec u, Vec v, Vec a)
+{
+  const double A = smooth_step(t, _loading_time);
+  const double A1 = smooth_step_derivative(t, _loading_time, 1);
+  const double A2 = smooth_step_derivative(t, _loading_time, 2);
+  const PetscScalar *base, *range;
+  GELX_PETSC(VecGetArrayRead(_prescribed_base.get(), &base));
+  GELX_PETSC(VecGetArrayRead(_prescribed_range.get(), &range));
+  PetscScalar *uv, *vv, *av;
+  GELX_PETSC(VecGetArray(u, &uv));
+  GELX_PETSC(VecGetArray(v, &vv));
+  GELX_PETSC(VecGetArray(a, &av));
+  for (PetscInt i : _prescribed)
+  {
+    uv[i] = base[i] + A * range[i];
+    vv[i] = A1 * range[i];
+    av[i] = A2 * range[i];
+  }
+  GELX_PETSC(VecRestoreArray(a, &av));
+  GELX_PETSC(VecRestoreArray(v, &vv));
+  GELX_PETSC(VecRestoreArray(u, &uv));
+  GELX_PETSC(VecRestoreArrayRead(_prescribed_range.get(), &range));
+  GELX_PETSC(VecRestoreArrayRead(_prescribed_base.get(), &base));
+}
+
+void InertialDynamics::choose_explicit_step()
+{
+  PetscReal t, end_time;
+  GELX_PETSC(TSGetTime(_ts, &t));
+  GELX_PETSC(TSGetMaxTime(_ts, &end_time));
+  double dt = _fixed_step;
+  if (dt == 0)
+  {
+    // The stiffness moves with the state (a stiffening law, contact of folds): re-estimated
+    // every stable_step_every steps, each a tangent assembly, about as costly as a few
+    // residual evaluations
+    if (std::isnan(_stable_step) || ++_steps_since_estimate >= _stable_step_every)
+    {
+      set_time(t);
+      _system.set_state(_ts->vec_sol);
+      _system.tangent(_jacobian);
+      const double bound = gershgorin_bound(_jacobian, _lumped_mass.get(), _prescribed);
+      _stable_step = _step_fraction * 2 / std::sqrt(bound);
+      _smallest_stable_step = std::min(_smallest_stable_step, _stable_step);
+      _steps_since_estimate = 0;
+    }
+    dt = _stable_step;
+  }
+  GELX_PETSC(TSSetTimeStep(_ts, std::min(dt, end_time - t)));
+}
+
 Vec InertialDynamics::velocity() const { return _ts->vec_dot; }
-Vec InertialDynamics::acceleration() const { return alpha2_state(_ts).A1; }
+Vec InertialDynamics::acceleration() const { return step_vectors().acceleration; }
 
 void InertialDynamics::save(PathState& state) const
 {
-  const Alpha2State& alpha = alpha2_state(_ts);
+  const StepVectors alpha = step_vectors();
   PetscInt step;
   PetscReal t, t_previous, dt;
   GELX_PETSC(TSGetStepNumber(_ts, &step));
@@ -459,9 +676,11 @@ void InertialDynamics::save(PathState& state) const
   state.load = t;
   state.step_size = dt;
   state.vectors["velocity"] = copy_of(_ts->vec_dot);
-  state.vectors["acceleration"] = copy_of(alpha.A1);
-  state.vectors["previous_unknowns"] = copy_of(alpha.X0);
-  state.vectors["previous_velocity"] = copy_of(alpha.V0);
+  state.vectors["acceleration"] = copy_of(alpha.acceleration);
+  state.vectors["previous_unknowns"] = copy_of(alpha.previous_unknowns);
+  state.vectors["previous_velocity"] = copy_of(alpha.previous_velocity);
+  if (_explicit)
+    state.vectors["lumped_mass"] = copy_of(_lumped_mass.get()); // mass scaling included
   state.driver = {{"previous_time", t_previous},
                   {"strain_energy0", _strain_energy0},
                   {"kinetic_energy0", _kinetic_energy0},
@@ -469,6 +688,10 @@ void InertialDynamics::save(PathState& state) const
                   {"external_work", _summary.external_work},
                   {"kinetic_ratio", _summary.kinetic_ratio},
                   {"rejected_steps", _summary.rejected_steps}};
+  if (_explicit)
+    state.driver.update({{"stable_step", _stable_step},
+                         {"smallest_stable_step", _smallest_stable_step},
+                         {"steps_since_estimate", _steps_since_estimate}});
 }
 
 DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& observers,
@@ -478,6 +701,10 @@ DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& obser
   _summary = DynamicsSummary{};
   _summary.dissipation_bound = INFINITY; // no quasi-static criterion of real inertia
   _summary.kinetic_bound = _kinetic_bound;
+  _summary.integrator = {{"scheme", _explicit ? "central_difference" : "generalised_alpha"},
+                         {"mass", _lumping.empty() ? "consistent" : "lumped " + _lumping}};
+  if (_explicit)
+    _summary.integrator["added_mass_ratio"] = _added_mass / _total_mass;
   _summary.external_work = _has_reactions ? 0.0 : NAN;
   _counters = StepCounters{};
   _have_previous_reaction = false;
@@ -488,12 +715,23 @@ DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& obser
   OwnedVec v = copy_of(resume ? resume->vectors.at("velocity").get() : _initial_velocity.get());
   GELX_PETSC(TS2SetSolution(_ts, u.get(), v.get()));
   GELX_PETSC(TSSetUp(_ts));
-  Alpha2State& alpha = alpha2_state(_ts);
+  const StepVectors alpha = step_vectors();
+  _stable_step = NAN;
+  _smallest_stable_step = INFINITY;
+  if (_explicit)
+    *central_difference_state(_ts).acceleration_known = resume != nullptr;
   if (resume)
   {
-    GELX_PETSC(VecCopy(resume->vectors.at("previous_unknowns").get(), alpha.X0));
-    GELX_PETSC(VecCopy(resume->vectors.at("previous_velocity").get(), alpha.V0));
-    GELX_PETSC(VecCopy(resume->vectors.at("acceleration").get(), alpha.A1));
+    GELX_PETSC(VecCopy(resume->vectors.at("previous_unknowns").get(), alpha.previous_unknowns));
+    GELX_PETSC(VecCopy(resume->vectors.at("previous_velocity").get(), alpha.previous_velocity));
+    GELX_PETSC(VecCopy(resume->vectors.at("acceleration").get(), alpha.acceleration));
+    if (_explicit)
+    {
+      set_lumped_mass(resume->vectors.at("lumped_mass").get());
+      _stable_step = resume->driver.at("stable_step");
+      _smallest_stable_step = resume->driver.at("smallest_stable_step");
+      _steps_since_estimate = resume->driver.at("steps_since_estimate");
+    }
     GELX_PETSC(TSSetTime(_ts, resume->load));
     GELX_PETSC(TSSetStepNumber(_ts, resume->step));
     GELX_PETSC(TSSetTimeStep(_ts, resume->step_size));
@@ -518,10 +756,18 @@ DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& obser
     _strain_energy0 = _strain_energy();
     _kinetic_energy0 = 0.5 * quadratic_form(_mass, v.get(), _work.get());
     _resuming = false;
-    _initial_acceleration = consistent_acceleration(v.get());
+    // central differences solve their own (diagonal) start
+    if (!_explicit)
+      _initial_acceleration = consistent_acceleration(v.get());
   }
   _skip_first_monitor = true;
+  // An explicit run that blows up (a step above the stable one) ends in a ConvergenceError of
+  // a callback: one line, not PETSc's trace of every frame it passed through
+  if (_explicit)
+    GELX_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
   const PetscErrorCode ierr = TSSolve(_ts, u.get());
+  if (_explicit)
+    GELX_PETSC(PetscPopErrorHandler());
   _observers = nullptr;
   _resuming = false;
   if (callback_error)
@@ -532,7 +778,8 @@ DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& obser
   GELX_PETSC(TSGetTime(_ts, &t));
   set_time(t);
   _system.set_state(_ts->vec_sol);
-  throw_if_stopped_early(_ts, t, "inertial dynamics", _too_small_step, _prefix, _min_step, "");
+  throw_if_stopped_early(_ts, t, _explicit ? "explicit dynamics" : "inertial dynamics",
+                         _too_small_step, _prefix, _min_step, "");
   return _summary;
 }
 

@@ -61,10 +61,27 @@ namespace gelx
 /// that start; the layout is checked at run time against TSAlpha2GetParams and the vectors'
 /// sizes, and a PETSc whose layout differs is refused in one line.
 ///
+/// Explicit central differences (-PREFIX_ts_type gelx_central_difference, the scheme of
+/// ABAQUS/Explicit; central_difference.h): the same equation with a lumped mass, each step one
+/// residual evaluation and no solve, the step below the stable step 2 / omega_max. The step is
+/// fraction * 2 / sqrt(lambda), lambda Gershgorin's bound of the largest eigenvalue of M^-1 K
+/// (never below it, so the step is never above the critical one), K the tangent at the
+/// current state, re-estimated every `stable_step_every` steps; or fixed by -PREFIXdt. Mass
+/// scaling (-PREFIXmass_scaling_step dt): the lumped masses raised where needed so that the
+/// stable step is at least dt, from the tangent where the integrator is constructed (ABAQUS'
+/// fixed mass scaling at the step's start), the mass added reported in the summary. Damping:
+/// mass-proportional only (C = a M stays diagonal; b K would need a solve per step). The
+/// prescribed displacements must be affine in the amplitude (checked), so that their
+/// velocity and acceleration are the smooth step's derivatives, exact at every step end.
+/// Restart as for TSALPHA2 (the acceleration is the central-difference type's own state).
+///
 /// Options (prefix PREFIX, default `inertial_`): gelx's loading_time (T, 1), hold_time (0), dt
-/// (first step, T / 100), rayleigh_mass (a, 1/time, 0), rayleigh_stiffness (b, time, 0),
-/// kinetic_bound (KE / SE above which summary says "not quasi-static", 0.05), min_step
-/// (1e-12 T); PETSc's -PREFIX_ts_* (defaults: ts_type alpha2, ts_adapt_type basic,
+/// (first step, T / 100; explicit: a fixed step instead of the stable-step estimate),
+/// rayleigh_mass (a, 1/time, 0), rayleigh_stiffness (b, time, 0), kinetic_bound (KE / SE above
+/// which summary says "not quasi-static", 0.05), min_step (1e-12 T), mass (consistent or
+/// lumped; explicit: lumped only), lumping (auto, row_sum or diagonal: lumped_mass()),
+/// stable_step_fraction (0.9), stable_step_every (100), mass_scaling_step (0: none);
+/// PETSc's -PREFIX_ts_* (defaults: ts_type alpha2, ts_adapt_type basic,
 /// ts_adapt_dt_max T / 10, ts_max_snes_failures -1, ts_max_reject 20, ts_max_steps 100000),
 /// -PREFIX_snes_* (basic line search, max_it 10) and the linear solver set
 /// -PREFIX_linear_solver.
@@ -105,8 +122,10 @@ public:
   double loading_time() const { return _loading_time; }
   double end_time() const { return _loading_time + _hold_time; }
   TS ts() const { return _ts; }
-  /// M (with the prescribed rows) on the system's unknowns
+  /// M (with the prescribed rows) on the system's unknowns: consistent or lumped
   Mat mass() const { return _mass; }
+  /// Whether the scheme is explicit central differences
+  bool is_explicit() const { return _explicit; }
 
   /// For the C callbacks
   void form_function(double t, Vec u, Vec v, Vec a, Vec F);
@@ -115,6 +134,8 @@ public:
   void pre_step();
   void pre_stage();
   void check_step_size();
+  /// The prescribed rows' motion at t (central differences' PrescribedMotion)
+  void prescribe(double t, Vec u, Vec v, Vec a);
   std::exception_ptr callback_error;
 
 private:
@@ -126,6 +147,18 @@ private:
   void reactions(Vec u, Vec v, Vec a, Vec r);
   /// a(0) from the equation of motion at the current state and velocity v (see pre_stage)
   OwnedVec consistent_acceleration(Vec v);
+  /// The integrator's step vectors (TSALPHA2's or central differences')
+  struct StepVectors
+  {
+    Vec previous_unknowns, previous_velocity, previous_acceleration, acceleration;
+  };
+  StepVectors step_vectors() const;
+  /// Central differences: M = diag(m) (mass, M_D, C and TS's diagonals from it)
+  void set_lumped_mass(Vec m);
+  /// Central differences: the prescribed rows' g(A) = g0 + A dg, checked affine
+  void measure_prescribed_motion();
+  /// Central differences: the step for the next step (stable-step estimate or fixed)
+  void choose_explicit_step();
 
   MPI_Comm _comm;
   NonlinearSystem& _system;
@@ -143,6 +176,14 @@ private:
   OwnedVec _initial_acceleration; ///< until the first step is accepted (pre_stage)
   OwnedVec _initial_velocity, _work, _mean_velocity, _reaction, _previous_reaction, _du;
   std::vector<PetscInt> _prescribed; ///< local rows
+  bool _explicit = false; ///< central differences
+  double _rayleigh_mass = 0;
+  std::string _lumping; ///< the lumped mass' method, empty for the consistent mass
+  double _total_mass = 0, _added_mass = 0;
+  double _step_fraction = 0.9, _smallest_stable_step = INFINITY, _stable_step = NAN;
+  int _stable_step_every = 100, _steps_since_estimate = 0;
+  OwnedVec _lumped_mass, _mass_diagonal, _damping_diagonal; ///< m; m (1 where prescribed); a m
+  OwnedVec _prescribed_base, _prescribed_range; ///< g0, dg
 
   // The run in progress (and what save() keeps of it)
   const std::vector<DynamicsObserver>* _observers = nullptr;

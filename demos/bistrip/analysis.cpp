@@ -32,8 +32,9 @@ void BistripAnalysis::bind(Parameters& prm)
   prm.bind("analysis", "probe_shortening", probe_shortening,
            "the eigen-buckling's perturbation: an end shortening (mm)", Parameters::positive);
   prm.bind("analysis", "method", method,
-           "path: dynamics (first-order flow), inertia (equation of motion) or arclength",
-           Parameters::one_of({"dynamics", "inertia", "arclength"}));
+           "path: dynamics (first-order flow), inertia (equation of motion, implicit), "
+           "explicit (equation of motion, central differences) or arclength",
+           Parameters::one_of({"dynamics", "inertia", "explicit", "arclength"}));
   prm.bind("analysis", "max_steps", max_steps, "arc-length steps at most",
            Parameters::at_least_one);
   prm.bind("analysis", "equilibria", equilibria,
@@ -58,7 +59,7 @@ void BistripAnalysis::check(const BistripParameters& p) const
   if (bonding != "instant" && (seed != "random" || method != "dynamics"))
     throw InputError("--bonding " + bonding + " needs --seed random and --method dynamics");
   if (return_distance > 0 && method == "arclength")
-    throw InputError("return_distance needs --method dynamics or inertia");
+    throw InputError("return_distance needs --method dynamics, inertia or explicit");
   if (seed_mode > modes)
     throw InputError("seed_mode must be one of the computed modes (1 .. modes)");
 }

@@ -33,7 +33,8 @@ struct BistripAnalysis
   double probe_shortening = 0.1;
   double min_frame_turns = 0.25; ///< a helical segment's frame turns at least this much
   /// How the path is followed: "dynamics" (damped quasi-static dynamics, the first-order
-  /// flow), "inertia" (the equation of motion, generalised-alpha) or "arclength"
+  /// flow), "inertia" (the equation of motion, generalised-alpha), "explicit" (the same by
+  /// central differences) or "arclength"
   /// (continuation in the end shortening, to compare where it gets through)
   std::string method = "dynamics";
   int max_steps = 2000; ///< arc-length steps at most

@@ -24,7 +24,8 @@
 //  3. The ends come together from L to the final end distance on a smooth-step ramp, by damped
 //     quasi-static dynamics (gelx::DampedDynamics, ABAQUS' *STABILIZE; --method dynamics) or
 //     with inertia from the bonded strip's equilibrium at rest (gelx::InertialDynamics,
-//     ABAQUS/Explicit's problem; --method inertia), methods.h. At every output
+//     ABAQUS/Explicit's problem; --method inertia, or explicit central differences as
+//     ABAQUS/Explicit integrates it, --method explicit), methods.h. At every output
 //     distance: end force, the strain energy of each strip, kinetic and dissipated energy, the
 //     work of the end force, the number of negative tangent eigenvalues, the helical segments
 //     and perversions read off the centreline (centreline.h), the energy of every slab (Fig.

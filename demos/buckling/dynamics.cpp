@@ -1,5 +1,6 @@
 // gelx scene: buckling in time, by damped quasi-static dynamics (gelx::DampedDynamics) or
-// with inertia (gelx::InertialDynamics)
+// with inertia (gelx::InertialDynamics: implicit generalised-alpha or explicit central
+// differences)
 //
 // Sample runs:
 //   build/demos/buckling/gelx-buckling-dynamics --output /tmp/column
@@ -15,18 +16,20 @@
 // prescribed shortening clamped-clamped) and held, following in time with PETSc TS either
 // the first-order viscous flow c M u' + R(u; t) = 0 (--method dynamics, options -dynamics_)
 // or the equation of motion M u'' + C u' + R(u; t) = 0 with a light Rayleigh damping
-// (--method inertia, options -inertial_). steps.csv has, per accepted step, the energies
+// (--method inertia, options -inertial_; --method explicit, options -explicit_, with mass
+// scaling). steps.csv has, per accepted step, the energies
 // (strain, kinetic, dissipated; with inertia the supports' work and the balance residual),
 // their ratios KE/SE and ED/SE (ABAQUS' ALLKE/ALLSE, ALLSD/ALLIE), the deflection and the axial
 // force with the elastica's load at that deflection; summary.json says whether the run was
 // quasi-static (the ratios within their bounds, -PREFIX_dissipation_bound and
 // -PREFIX_kinetic_bound). With inertia the run checkpoints every --checkpoint_every steps and
-// continues exactly with --restart. The verifications are tests/damped_dynamics.cpp and
-// tests/inertial_dynamics.cpp.
+// continues exactly with --restart. The verifications are tests/damped_dynamics.cpp,
+// tests/inertial_dynamics.cpp and tests/explicit_dynamics.cpp.
 
 #include "euler_column.h"
 
 #include <gelx/dynamics.h>
+#include <gelx/central_difference.h>
 #include <gelx/inertia.h>
 #include <gelx/petsc_utils.h>
 #include <gelx/program.h>
@@ -37,7 +40,12 @@ struct Loading
 {
   double imperfection = 0.01; ///< amplitude of the seeded mode 1, over tx
   double load = 10;           ///< final load factor in Euler loads (traction or shortening)
-  std::string method = "dynamics"; ///< "dynamics" (first-order flow) or "inertia"
+  /// "dynamics" (first-order flow), "inertia" (equation of motion, TSALPHA2) or "explicit"
+  /// (the same equation by central differences)
+  std::string method = "dynamics";
+  /// Time between field outputs; 0: every accepted step (explicit: every loading time / 200,
+  /// as its steps are many and short)
+  double output_every = 0;
 };
 } // namespace
 
@@ -60,8 +68,12 @@ int main(int argc, char* argv[])
            "clamped-clamped)",
            gelx::Parameters::positive);
   prm.bind("analysis", "method", loading.method,
-           "path: dynamics (first-order viscous flow) or inertia (equation of motion)",
-           gelx::Parameters::one_of({"dynamics", "inertia"}));
+           "path: dynamics (first-order viscous flow), inertia (equation of motion, implicit) "
+           "or explicit (equation of motion, central differences)",
+           gelx::Parameters::one_of({"dynamics", "inertia", "explicit"}));
+  prm.bind("analysis", "output_every", loading.output_every,
+           "time between field outputs (0: every step; explicit: loading time / 200)",
+           gelx::Parameters::non_negative);
 
   return gelx::run_program(argc, argv, "gelx-buckling-dynamics", prm, [&](gelx::Run& run)
   {
@@ -83,14 +95,24 @@ int main(int argc, char* argv[])
     //    damping dissipates 0.2 % of the strain energy; with inertia a Rayleigh mass damping
     //    a = 1.2e-3 damps the first bending mode at 5 % of critical (a / (2 omega_1)), so
     //    that the column settles in the hold of 7 periods, and rho_inf = 0.8 removes what
-    //    the steps do not resolve (the axial modes)
-    const std::string prefix = loading.method == "inertia" ? "inertial_" : "dynamics_";
+    //    the steps do not resolve (the axial modes). Explicit: the same damping; its stable
+    //    step (0.034 unscaled) would take 7e5 steps, so the lumped masses are scaled to a
+    //    step of 1 (ABAQUS' fixed mass scaling; the added mass is in the summary), which
+    //    leaves the bending modes, far slower, as they were (measured: README)
+    const bool inertia = loading.method != "dynamics";
+    const std::string prefix = loading.method == "dynamics" ? "dynamics_"
+                               : loading.method == "inertia" ? "inertial_"
+                                                             : "explicit_";
     gelx::set_default_options(prefix, {{"loading_time", "2e4"},
                                        {"hold_time", "4e3"},
                                        {"ts_rtol", "1e-3"},
                                        {"ts_atol", "1e-3"}});
     if (loading.method == "inertia")
       gelx::set_default_options(prefix, {{"rayleigh_mass", "1.2e-3"}, {"ts_alpha_radius", "0.8"}});
+    else if (loading.method == "explicit")
+      gelx::set_default_options(prefix, {{"ts_type", gelx::TSCENTRALDIFFERENCE},
+                                         {"rayleigh_mass", "1.2e-3"},
+                                         {"mass_scaling_step", "1"}});
     else
       gelx::set_default_option(prefix, "damping", "1e-3");
     auto strain_energy = [&] { return column.strain_energy(); };
@@ -102,6 +124,11 @@ int main(int argc, char* argv[])
     fields.add("cauchy_stress", column.stress());
     fields.add("energy_density", column.energy_density());
     double d = 0; // the last step's deflection / L
+    const double output_every
+        = loading.output_every > 0 || loading.method != "explicit"
+              ? loading.output_every
+              : gelx::real_option(prefix, "loading_time", 0) / 200;
+    double next_output = 0;
     gelx::ProgressLine progress(
         run.comm(), {.quantity = [&] { return gelx::quantity_text("deflection/L", d); }});
     auto record = [&](const gelx::DynamicsRecord& r, const gelx::DynamicsSummary& so_far,
@@ -114,12 +141,16 @@ int main(int argc, char* argv[])
                   {"axial_force_over_critical", P / P_cr},
                   {"elastica_load_over_critical", column.elastica_load_ratio(d)}});
       results.append_step(row);
-      results.write_fields(r.time, fields.update());
+      if (r.time >= next_output * (1 - 1e-12) || r.time >= end_time * (1 - 1e-12))
+      {
+        results.write_fields(r.time, fields.update());
+        next_output = r.time + output_every;
+      }
       run.summary["dynamics"] = so_far.to_json();
       progress.print(r.step, r.time, r.time / end_time);
     };
     gelx::DynamicsSummary summary;
-    if (loading.method == "inertia")
+    if (inertia)
     {
       gelx::InertialDynamics dynamics(run.comm(), column.problem(), *column.mass_form(),
                                       strain_energy, apply_load, prefix);

@@ -19,7 +19,10 @@
 //     integrated here from the reaction on the shortened end;
 //  4. it is a static equilibrium (the residual without viscous forces vanishes);
 //  5. the same shortening 20 times faster is flagged "not quasi-static", and gets through
-//     stages that met states declared inadmissible.
+//     stages that met states declared inadmissible;
+//  6. restart: that fast run saved after step 20 and continued from the saved state in a new
+//     integrator ends equal to the uninterrupted run (1e-10); continued with TSBDF's history
+//     dropped (its own restart at order 1), it differs.
 //
 // Usage: test_damped_dynamics [PETSc options, e.g. -dynamics_ts_monitor]
 
@@ -30,6 +33,7 @@
 #include <cstdio>
 #include <gelx/dynamics.h>
 #include <gelx/newton.h>
+#include <gelx/path.h>
 #include <gelx/petsc_utils.h>
 
 namespace
@@ -254,5 +258,58 @@ int main(int argc, char* argv[])
                    (fast.dissipation_ratio > fast.dissipation_bound
                     || fast.kinetic_ratio > fast.kinetic_bound)
                        && verdict == "not quasi-static");
+
+    // 8. Restart of the fast run (adaptive BDF2 steps through the bifurcation): the state
+    //    after step 20 (TSBDF's history, the step size, the velocity's states) and the
+    //    unknowns then, continued by a new integrator
+    gelx::set_default_options("restart_dynamics_", {{"damping", "1e-3"},
+                                                    {"ts_rtol", "1e-3"},
+                                                    {"ts_atol", "1e-3"},
+                                                    {"loading_time", "1e3"},
+                                                    {"hold_time", "0"}});
+    auto apply = [&](double a) { column.set_load_factor(a * shortening); };
+    auto energy = [&] { return column.strain_energy(); };
+    gelx::PathState saved;
+    gelx::OwnedVec saved_u(column.problem().create_vector());
+    column.displacement()->x()->set(0.0);
+    int steps = 0;
+    {
+      gelx::DampedDynamics whole(comm, column.problem(), *column.mass_form(), energy, apply,
+                                 "restart_dynamics_");
+      whole.run({[&](const gelx::DynamicsRecord& r)
+                 {
+                   steps = r.step.step;
+                   if (r.step.step == 20)
+                   {
+                     whole.save(saved);
+                     VecCopy(column.problem().unknowns(), saved_u.get());
+                   }
+                 }});
+    }
+    gelx::OwnedVec whole_u = gelx::copy_of(column.problem().unknowns());
+    auto continue_from = [&](const gelx::PathState& state)
+    {
+      column.problem().set_state(saved_u.get());
+      gelx::DampedDynamics continued(comm, column.problem(), *column.mass_form(), energy, apply,
+                                     "restart_dynamics_");
+      continued.run({}, &state);
+      gelx::OwnedVec d = gelx::copy_of(column.problem().unknowns());
+      VecAXPY(d.get(), -1.0, whole_u.get());
+      PetscReal off, size;
+      VecNorm(d.get(), NORM_2, &off);
+      VecNorm(whole_u.get(), NORM_2, &size);
+      return off / size;
+    };
+    checks.absolute("restart after step 20 of " + std::to_string(steps)
+                        + ": final u against the uninterrupted run's",
+                    continue_from(saved), 0, 1e-10);
+    saved.driver["bdf_order"] = 1;
+    saved.driver["bdf_states"] = 1;
+    const double off = continue_from(saved);
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "control: continued with TSBDF's history dropped, it differs by %.2e > 1e-7",
+                  off);
+    checks.require(text, off > 1e-7);
   });
 }

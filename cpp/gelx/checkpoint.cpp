@@ -20,6 +20,14 @@
 
 namespace gelx
 {
+
+OwnedVec copy_of(Vec v)
+{
+  Vec c;
+  GELX_PETSC(VecDuplicate(v, &c));
+  GELX_PETSC(VecCopy(v, c));
+  return OwnedVec(c);
+}
 namespace
 {
 namespace fs = std::filesystem;

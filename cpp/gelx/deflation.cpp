@@ -12,13 +12,6 @@ namespace gelx
 {
 namespace
 {
-OwnedVec copy_of(Vec x)
-{
-  Vec y;
-  GELX_PETSC(VecDuplicate(x, &y));
-  GELX_PETSC(VecCopy(x, y));
-  return OwnedVec(y);
-}
 
 /// The search's SNES defaults, set before the solver reads its options.
 const std::string& with_search_defaults(const std::string& prefix)

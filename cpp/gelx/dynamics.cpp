@@ -12,6 +12,7 @@
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/la/petsc.h>
 #include <exception>
+#include <petsc/private/tsimpl.h>
 #include <sstream>
 
 namespace gelx
@@ -285,6 +286,56 @@ PetscErrorCode post_step(TS ts)
   return guarded_callback(d.callback_error, [&] { d.check_step_size(); });
 }
 
+PetscErrorCode pre_step(TS ts)
+{
+  void* ctx;
+  PetscCall(TSGetApplicationContext(ts, &ctx));
+  DampedDynamics& d = dynamics_of(ctx);
+  return guarded_callback(d.callback_error, [&] { d.pre_step(); });
+}
+
+/// PETSc 3.18's TSBDF state, the struct TS_BDF of src/ts/impls/bdf/bdf.c, which PETSc keeps
+/// private (DampedDynamics' class comment says why gelx reads and writes it). Only the layout
+/// is repeated here, none of PETSc's code. work[0] is the newest state, work[1..n] the
+/// accepted ones before it at time[1..n]; k the order the next step uses.
+struct BdfState
+{
+  PetscInt k, n;
+  PetscReal time[6 + 2];
+  Vec work[6 + 2];
+  Vec tvwork[6 + 2];
+  PetscReal shift;
+  Vec vec_dot, vec_wrk, vec_lte;
+  PetscBool transientvar;
+  PetscInt order;
+  TSStepStatus status;
+};
+
+/// TS's TSBDF state, after TSSetUp; throws unless its layout is PETSc 3.18's: its order is
+/// TSBDFGetOrder's, k and n in range, and its vectors are vectors of the solution's size.
+BdfState& bdf_state(TS ts)
+{
+  auto* state = static_cast<BdfState*>(ts->data);
+  PetscInt order;
+  GELX_PETSC(TSBDFGetOrder(ts, &order));
+  bool same = state->order == order && state->k >= 0 && state->k <= order && state->n >= 0
+              && state->n <= 7 && !state->transientvar;
+  PetscInt n = 0;
+  GELX_PETSC(VecGetLocalSize(ts->vec_sol, &n));
+  for (Vec v : state->work)
+  {
+    if (!same)
+      break;
+    PetscInt m = -1;
+    same = v && reinterpret_cast<PetscObject>(v)->classid == VEC_CLASSID
+           && VecGetLocalSize(v, &m) == 0 && m == n;
+  }
+  if (!same)
+    throw std::runtime_error("this PETSc's TSBDF keeps its state in another layout than "
+                             "PETSc 3.18's: gelx cannot restart the damped flow");
+  return *state;
+}
+
 } // namespace
 
 DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
@@ -322,8 +373,12 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSMonitorSet(_ts, monitor, this, nullptr));
   GELX_PETSC(TSSetApplicationContext(_ts, this));
   GELX_PETSC(TSSetPostStep(_ts, post_step));
+  GELX_PETSC(TSSetPreStep(_ts, gelx::pre_step));
   GELX_PETSC(TSSetFromOptions(_ts));
   reject_failed_line_searches(_ts);
+  PetscBool bdf;
+  GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSBDF, &bdf));
+  _restartable = bdf;
   SNES snes;
   GELX_PETSC(TSGetSNES(_ts, &snes));
   KSP ksp;
@@ -403,8 +458,54 @@ void DampedDynamics::check_step_size()
     _too_small_step = step;
 }
 
+void DampedDynamics::pre_step()
+{
+  // A resumed run continues from the state save() wrote: TSBDF must not start again at
+  // order 1 from the current state alone (TSBDF_Restart) but take its history
+  if (_resuming)
+  {
+    _ts->steprestart = PETSC_FALSE;
+    _resuming = false;
+  }
+}
+
+void DampedDynamics::save(PathState& state) const
+{
+  if (!_restartable)
+    throw InputError("-" + _prefix + "ts_type: only bdf runs of the damped flow restart");
+  const BdfState& bdf = bdf_state(_ts);
+  PetscInt step;
+  PetscReal t, dt;
+  GELX_PETSC(TSGetStepNumber(_ts, &step));
+  GELX_PETSC(TSGetTime(_ts, &t));
+  GELX_PETSC(TSGetTimeStep(_ts, &dt));
+  state.step = step;
+  state.load = t;
+  state.step_size = dt;
+  for (PetscInt i = 0; i <= bdf.n; ++i)
+    state.vectors["bdf_state_" + std::to_string(i)] = copy_of(bdf.work[i]);
+  for (std::size_t i = 0; i < _history.size(); ++i)
+    state.vectors["velocity_state_" + std::to_string(i)] = copy_of(_history[i].get());
+  state.driver = {{"bdf_order", bdf.k},
+                  {"bdf_states", bdf.n},
+                  {"bdf_times", std::vector<double>(bdf.time, bdf.time + bdf.n + 1)},
+                  {"previous_time", _ts->ptime_prev},
+                  {"velocity_times", _history_time},
+                  {"power", _power},
+                  {"dissipated_energy", _summary.dissipated_energy},
+                  {"kinetic_ratio", _summary.kinetic_ratio},
+                  {"rejected_steps", _summary.rejected_steps}};
+}
+
 void DampedDynamics::accepted(int step, double t, Vec u)
 {
+  if (_skip_first_monitor)
+  {
+    // TSSolve's first call: the state the run resumes from, recorded already
+    _skip_first_monitor = false;
+    _counters.wall_time = wall_clock();
+    return;
+  }
   const bool first = _history.empty();
   if (!first)
   {
@@ -440,11 +541,18 @@ void DampedDynamics::accepted(int step, double t, Vec u)
     // grow from zero, but their ratio stays bounded (SE ~ A^2, KE ~ A'^2, A'/A = 3/t)
     if (record.strain_energy > 0)
       _summary.kinetic_ratio = std::max(_summary.kinetic_ratio, record.kinetic_ratio());
+    remember(t, u);
+    // after remember(): a checkpoint the observers write holds this state in the history
     for (const auto& observe : *_observers)
       observe(record);
+    return;
   }
-  else
-    _counters.wall_time = wall_clock();
+  _counters.wall_time = wall_clock();
+  remember(t, u);
+}
+
+void DampedDynamics::remember(double t, Vec u)
+{
   // Keep the last three accepted states, newest first (the oldest vector is reused)
   OwnedVec copy;
   if (_history.size() == 3)
@@ -460,7 +568,8 @@ void DampedDynamics::accepted(int step, double t, Vec u)
   _history_time.insert(_history_time.begin(), t);
 }
 
-DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observers)
+DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observers,
+                                    const PathState* resume)
 {
   _observers = &observers;
   _summary = DynamicsSummary{};
@@ -473,8 +582,41 @@ DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observe
 
   OwnedVec x(_system.create_vector());
   GELX_PETSC(VecCopy(_system.unknowns(), x.get()));
-  GELX_PETSC(TSSetTime(_ts, 0.0));
-  GELX_PETSC(TSSetStepNumber(_ts, 0));
+  _skip_first_monitor = _resuming = false;
+  if (resume)
+  {
+    if (!_restartable)
+      throw InputError("-" + _prefix + "ts_type: only bdf runs of the damped flow restart");
+    GELX_PETSC(TSSetSolution(_ts, x.get()));
+    GELX_PETSC(TSSetUp(_ts));
+    BdfState& bdf = bdf_state(_ts);
+    bdf.k = resume->driver.at("bdf_order");
+    bdf.n = resume->driver.at("bdf_states");
+    const std::vector<double> times = resume->driver.at("bdf_times");
+    for (PetscInt i = 0; i <= bdf.n; ++i)
+    {
+      bdf.time[i] = times[i];
+      GELX_PETSC(VecCopy(resume->vectors.at("bdf_state_" + std::to_string(i)).get(),
+                         bdf.work[i]));
+    }
+    _history_time = resume->driver.at("velocity_times").get<std::vector<double>>();
+    for (std::size_t i = 0; i < _history_time.size(); ++i)
+      _history.push_back(copy_of(resume->vectors.at("velocity_state_" + std::to_string(i)).get()));
+    _power = resume->driver.at("power");
+    _summary.dissipated_energy = resume->driver.at("dissipated_energy");
+    _summary.kinetic_ratio = resume->driver.at("kinetic_ratio");
+    _summary.rejected_steps = resume->driver.at("rejected_steps");
+    GELX_PETSC(TSSetTime(_ts, resume->load));
+    GELX_PETSC(TSSetStepNumber(_ts, resume->step));
+    GELX_PETSC(TSSetTimeStep(_ts, resume->step_size));
+    _ts->ptime_prev = resume->driver.at("previous_time");
+    _skip_first_monitor = _resuming = true;
+  }
+  else
+  {
+    GELX_PETSC(TSSetTime(_ts, 0.0));
+    GELX_PETSC(TSSetStepNumber(_ts, 0));
+  }
   callback_error = nullptr;
   _too_small_step = 0;
   const PetscErrorCode ierr = TSSolve(_ts, x.get());

@@ -190,10 +190,18 @@ struct DynamicsSummary
 /// The system may be the problem or a decorator of it (a contact, a reduced space of
 /// constraints: the mass is then P^T M P, NonlinearSystem::restrict_operator), not a bordered
 /// system with unknowns of its own (the arc-length's load). commit() is called once per
-/// accepted step, not per Newton iteration (a contact active set moves once per step). No
-/// restart yet: TSBDF's history (the previous states) cannot be handed back to PETSc, so a
-/// continued run would restart at order 1 and leave the uninterrupted path at the
-/// time-integration tolerance.
+/// accepted step, not per Newton iteration (a contact active set moves once per step).
+///
+/// Restart: save() puts TSBDF's history (the states and times its next steps interpolate,
+/// its current order), the step size and the velocity's states into a PathState, which a
+/// Checkpoints stores; run(observers, &state) continues from it, equal to the uninterrupted
+/// run to round-off. Why a hook into PETSc's private state: TSBDF keeps its history to
+/// itself and at the start of every TSSolve starts again at order 1 from the current state
+/// (TSBDF_Restart), which would take a continued run off the uninterrupted one by the
+/// time-integration error. gelx writes the history back into PETSc 3.18's TSBDF state and
+/// skips that start; the layout is checked at run time against TSBDFGetOrder and the
+/// vectors' sizes, and a PETSc whose layout differs is refused in one line. Only with
+/// -PREFIX_ts_type bdf (the default).
 class DampedDynamics
 {
 public:
@@ -208,10 +216,16 @@ public:
   DampedDynamics(const DampedDynamics&) = delete;
   DampedDynamics& operator=(const DampedDynamics&) = delete;
 
-  /// Run from the system's current state at t = 0 to T + hold, calling every observer after
+  /// Run from the system's current state at t = 0, or, with `resume`, from the state save()
+  /// wrote (the system already at its unknowns), to T + hold, calling every observer after
   /// every accepted step. Throws ConvergenceError when TS gives up; the system then holds the
   /// last accepted state.
-  DynamicsSummary run(const std::vector<DynamicsObserver>& observers);
+  DynamicsSummary run(const std::vector<DynamicsObserver>& observers,
+                      const PathState* resume = nullptr);
+  /// The integrator's state after the last accepted step into `state` (step, time, next step
+  /// size; TSBDF's history and the velocity's states as vectors; the energy accounts in
+  /// state.driver). Collective.
+  void save(PathState& state) const;
 
   /// The run's summary so far (complete after run()).
   const DynamicsSummary& summary() const { return _summary; }
@@ -229,6 +243,8 @@ public:
   void accepted(int step, double t, Vec u);
   /// After a step: a step below min_step stops TS (DIVERGED_STEP_REJECTED).
   void check_step_size();
+  /// Before a step: a resumed run keeps the history it was given.
+  void pre_step();
   /// An exception a callback raised, rethrown by run() after TSSolve returns
   std::exception_ptr callback_error;
 
@@ -236,6 +252,8 @@ private:
   void set_time(double t);
   /// The velocity at the last accepted state (see the class comment) into _velocity.
   void velocity(double t, Vec u);
+  /// Keep (t, u) as the newest of the last three accepted states
+  void remember(double t, Vec u);
 
   MPI_Comm _comm;
   NonlinearSystem& _system;
@@ -259,6 +277,8 @@ private:
   DynamicsSummary _summary;
   double _power = 0; ///< c v^T M v at the last accepted step
   StepCounters _counters;
+  bool _restartable = false; ///< TSBDF, whose state save() knows
+  bool _resuming = false, _skip_first_monitor = false;
 };
 
 } // namespace gelx

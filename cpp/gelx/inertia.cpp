@@ -105,13 +105,6 @@ PetscErrorCode prescribe(InertialDynamics& d, double t, Vec u, Vec v, Vec a)
   return guarded_callback(d.callback_error, [&] { d.prescribe(t, u, v, a); });
 }
 
-OwnedVec copy_of(Vec v)
-{
-  Vec c;
-  GELX_PETSC(VecDuplicate(v, &c));
-  GELX_PETSC(VecCopy(v, c));
-  return OwnedVec(c);
-}
 } // namespace
 
 InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,

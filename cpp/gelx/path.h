@@ -30,6 +30,8 @@ struct VecDestroyer
   void operator()(Vec v) const { VecDestroy(&v); }
 };
 using OwnedVec = std::unique_ptr<_p_Vec, VecDestroyer>;
+/// A copy of `v` (same layout and values) that the caller owns. Collective.
+OwnedVec copy_of(Vec v);
 
 /// Where a path is: with the system's unknowns, everything a driver needs to take the next
 /// step, so that a path can be saved after any step and continued from it (checkpoint.h).

@@ -118,14 +118,20 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
   // summary under `key`); `dissipated_before` is the energy damping dissipated on the legs
   // before it (each leg's TS counts from 0). Returns the dissipation up to its end.
   const bool inertia = a.method == "inertia" || a.method == "explicit";
-  // With inertia the path checkpoints after its steps and continues from a checkpoint
-  // (--restart): the integrator's state, and the record's in its scene state. Not the flow:
-  // TSBDF's history cannot be handed back to PETSc (dynamics.h)
-  const PathState start = inertia ? run.start_path(problem) : PathState{};
+  // The path checkpoints after its steps and continues from a checkpoint (--restart): the
+  // integrator's state, and the record's in its scene state
+  const PathState start = run.start_path(problem);
   const bool resuming = start.step > 0;
   // The integrator's state of the checkpoint, for the first leg driven (the one it is in)
   const PathState* resume = resuming ? &start : nullptr;
-  const StepObserver checkpoints = inertia ? run.checkpoints() : StepObserver{};
+  const StepObserver checkpoints = run.checkpoints();
+  // A step's checkpoint: the integrator's state, the record's, the dissipation before the leg
+  auto checkpoint = [&](const StepRecord& step, PathState& state, double dissipated_before)
+  {
+    state.scene = record.state();
+    state.scene["dissipated_before"] = dissipated_before;
+    checkpoints(step, state);
+  };
   auto drive = [&](std::function<void(double)> load, double dissipated_before,
                    const std::string& key, const std::string& prefix)
   {
@@ -150,9 +156,7 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
              observe(r, dynamics.summary(), dynamics.end_time());
              PathState state;
              dynamics.save(state);
-             state.scene = record.state();
-             state.scene["dissipated_before"] = dissipated_before;
-             checkpoints(r.step, state);
+             checkpoint(r.step, state, dissipated_before);
            }},
           std::exchange(resume, nullptr));
     }
@@ -160,14 +164,30 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
     {
       DampedDynamics dynamics(run.comm(), problem, *strip.mass_form(),
                               [&] { return strip.strain_energy(); }, load, prefix);
-      summary = dynamics.run({[&](const DynamicsRecord& r)
-                              { observe(r, dynamics.summary(), dynamics.end_time()); }});
+      summary = dynamics.run(
+          {[&](const DynamicsRecord& r)
+           {
+             observe(r, dynamics.summary(), dynamics.end_time());
+             PathState state;
+             dynamics.save(state);
+             checkpoint(r.step, state, dissipated_before);
+           }},
+          std::exchange(resume, nullptr));
     }
     run.summary[key] = summary.to_json();
     return dissipated_before + summary.dissipated_energy;
   };
 
-  if (a.bonding != "instant")
+  // The leg a checkpoint is in (-1: a new path); the legs before it are done
+  int resumed_leg = -1;
+  double dissipated = 0;
+  if (resuming)
+  {
+    record.restore(start.scene);
+    resumed_leg = record.leg();
+    dissipated = start.scene.at("dissipated_before");
+  }
+  if (a.bonding != "instant" && resumed_leg <= 0)
   {
     // Leg 0, the end held at L: a ramp builds the prestretch up over 1 s, at the path's
     // damping. A quench leaves the bonded strip to buckle: under a fixed load the
@@ -185,7 +205,8 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
                                               {"damping", quench ? "1e8" : "1"},
                                               {"ts_rtol", "1e-3"},
                                               {"ts_atol", "1e-3"}});
-    record.begin_leg(0);
+    if (resumed_leg < 0)
+      record.begin_leg(0);
     drive([&](double s) { strip.set_prestretch_fraction(quench ? 1 : s); }, 0,
           "bonding_dynamics", "bonding_dynamics_");
   }
@@ -195,14 +216,7 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
   const std::string key = a.method == "explicit" ? "explicit_dynamics"
                           : inertia              ? "inertial_dynamics"
                                                  : "dynamics";
-  double dissipated = 0;
-  if (resuming)
-  {
-    // Continue the leg the checkpoint is in (the legs before it are done)
-    record.restore(start.scene);
-    dissipated = start.scene.at("dissipated_before");
-  }
-  else
+  if (resumed_leg < 1)
   {
     if (inertia)
     {

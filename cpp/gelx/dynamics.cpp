@@ -249,6 +249,20 @@ void throw_if_stopped_early(TS ts, double t, const std::string& what_ran,
   throw ConvergenceError(what.str());
 }
 
+bool vectors_of_solution_size(TS ts, std::initializer_list<Vec> vectors)
+{
+  PetscInt n = 0;
+  GELX_PETSC(VecGetLocalSize(ts->vec_sol, &n));
+  for (Vec v : vectors)
+  {
+    PetscInt m = -1;
+    if (!v || reinterpret_cast<PetscObject>(v)->classid != VEC_CLASSID
+        || VecGetLocalSize(v, &m) != 0 || m != n)
+      return false;
+  }
+  return true;
+}
+
 double wall_clock()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
@@ -318,18 +332,12 @@ BdfState& bdf_state(TS ts)
   auto* state = static_cast<BdfState*>(ts->data);
   PetscInt order;
   GELX_PETSC(TSBDFGetOrder(ts, &order));
-  bool same = state->order == order && state->k >= 0 && state->k <= order && state->n >= 0
-              && state->n <= 7 && !state->transientvar;
-  PetscInt n = 0;
-  GELX_PETSC(VecGetLocalSize(ts->vec_sol, &n));
-  for (Vec v : state->work)
-  {
-    if (!same)
-      break;
-    PetscInt m = -1;
-    same = v && reinterpret_cast<PetscObject>(v)->classid == VEC_CLASSID
-           && VecGetLocalSize(v, &m) == 0 && m == n;
-  }
+  const bool same = state->order == order && state->k >= 0 && state->k <= order
+                    && state->n >= 0 && state->n <= 7 && !state->transientvar
+                    && vectors_of_solution_size(ts, {state->work[0], state->work[1],
+                                                     state->work[2], state->work[3],
+                                                     state->work[4], state->work[5],
+                                                     state->work[6], state->work[7]});
   if (!same)
     throw std::runtime_error("this PETSc's TSBDF keeps its state in another layout than "
                              "PETSc 3.18's: gelx cannot restart the damped flow");

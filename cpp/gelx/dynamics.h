@@ -10,6 +10,7 @@
 #include <dolfinx/fem/Form.h>
 #include <exception>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
@@ -89,6 +90,10 @@ void throw_if_stopped_early(TS ts, double t, const std::string& what_ran,
                             const std::string& unit);
 /// Seconds of a monotonic clock.
 double wall_clock();
+/// For the hooks into PETSc's private integrator states: whether every one of `vectors` is a
+/// PETSc vector of the local size of TS's solution (a layout check, with the parameters the
+/// public API gives). Collective only in that the sizes are local.
+bool vectors_of_solution_size(TS ts, std::initializer_list<Vec> vectors);
 
 /// One accepted time step.
 struct DynamicsRecord

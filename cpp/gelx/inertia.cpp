@@ -37,18 +37,10 @@ Alpha2State& alpha2_state(TS ts)
   auto* state = static_cast<Alpha2State*>(ts->data);
   PetscReal alpha_m, alpha_f, gamma, beta;
   GELX_PETSC(TSAlpha2GetParams(ts, &alpha_m, &alpha_f, &gamma, &beta));
-  bool same = state->Alpha_m == alpha_m && state->Alpha_f == alpha_f && state->Gamma == gamma
-              && state->Beta == beta;
-  PetscInt n = 0;
-  GELX_PETSC(VecGetLocalSize(ts->vec_sol, &n));
-  for (Vec v : {state->X0, state->X1, state->V0, state->V1, state->A0, state->A1})
-  {
-    if (!same)
-      break;
-    PetscInt m = -1;
-    same = v && reinterpret_cast<PetscObject>(v)->classid == VEC_CLASSID
-           && VecGetLocalSize(v, &m) == 0 && m == n;
-  }
+  const bool same = state->Alpha_m == alpha_m && state->Alpha_f == alpha_f
+                    && state->Gamma == gamma && state->Beta == beta
+                    && vectors_of_solution_size(ts, {state->X0, state->X1, state->V0,
+                                                     state->V1, state->A0, state->A1});
   if (!same)
     throw std::runtime_error("this PETSc's TSALPHA2 keeps its state in another layout than "
                              "PETSc 3.18's: gelx cannot restart or read its acceleration");

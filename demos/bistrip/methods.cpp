@@ -145,34 +145,31 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
       run.summary[key] = so_far.to_json();
       progress.print(r.step, strip.end_distance(), r.time / end_time);
     };
+    // Either integrator: observed, checkpointed after every step, resumed by the first leg
+    auto follow = [&](auto& dynamics)
+    {
+      return dynamics.run(
+          {[&](const DynamicsRecord& r)
+           {
+             observe(r, dynamics.summary(), dynamics.end_time());
+             PathState state;
+             dynamics.save(state);
+             checkpoint(r.step, state, dissipated_before);
+           }},
+          std::exchange(resume, nullptr));
+    };
     DynamicsSummary summary;
     if (inertia)
     {
       InertialDynamics dynamics(run.comm(), problem, *strip.mass_form(),
                                 [&] { return strip.strain_energy(); }, load, prefix);
-      summary = dynamics.run(
-          {[&](const DynamicsRecord& r)
-           {
-             observe(r, dynamics.summary(), dynamics.end_time());
-             PathState state;
-             dynamics.save(state);
-             checkpoint(r.step, state, dissipated_before);
-           }},
-          std::exchange(resume, nullptr));
+      summary = follow(dynamics);
     }
     else
     {
       DampedDynamics dynamics(run.comm(), problem, *strip.mass_form(),
                               [&] { return strip.strain_energy(); }, load, prefix);
-      summary = dynamics.run(
-          {[&](const DynamicsRecord& r)
-           {
-             observe(r, dynamics.summary(), dynamics.end_time());
-             PathState state;
-             dynamics.save(state);
-             checkpoint(r.step, state, dissipated_before);
-           }},
-          std::exchange(resume, nullptr));
+      summary = follow(dynamics);
     }
     run.summary[key] = summary.to_json();
     return dissipated_before + summary.dissipated_energy;

@@ -155,11 +155,9 @@ int main(int argc, char* argv[])
     // continues the run as if never stopped
     const gelx::PathState start = run.start_path(column.problem());
     const gelx::StepObserver checkpoints = run.checkpoints();
-    if (inertia)
+    auto follow = [&](auto& dynamics)
     {
-      gelx::InertialDynamics dynamics(run.comm(), column.problem(), *column.mass_form(),
-                                      strain_energy, apply_load, prefix);
-      summary = dynamics.run(
+      return dynamics.run(
           {[&](const gelx::DynamicsRecord& r)
            {
              record(r, dynamics.summary(), dynamics.end_time());
@@ -168,20 +166,18 @@ int main(int argc, char* argv[])
              checkpoints(r.step, state);
            }},
           start.step > 0 ? &start : nullptr);
+    };
+    if (inertia)
+    {
+      gelx::InertialDynamics dynamics(run.comm(), column.problem(), *column.mass_form(),
+                                      strain_energy, apply_load, prefix);
+      summary = follow(dynamics);
     }
     else
     {
       gelx::DampedDynamics dynamics(run.comm(), column.problem(), *column.mass_form(),
                                     strain_energy, apply_load, prefix);
-      summary = dynamics.run(
-          {[&](const gelx::DynamicsRecord& r)
-           {
-             record(r, dynamics.summary(), dynamics.end_time());
-             gelx::PathState state;
-             dynamics.save(state);
-             checkpoints(r.step, state);
-           }},
-          start.step > 0 ? &start : nullptr);
+      summary = follow(dynamics);
     }
     run.summary["dynamics"] = summary.to_json();
     run.summary.update({{"deflection_over_L", column.lateral_deflection()},

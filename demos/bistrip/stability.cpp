@@ -2,6 +2,7 @@
 #include "path_record.h"
 
 #include <dolfinx/la/petsc.h>
+#include <gelx/buckling.h>
 #include <gelx/deflation.h>
 #include <gelx/field_series.h>
 #include <gelx/newton.h>
@@ -71,9 +72,34 @@ void seek_equilibria(MPI_Comm comm, Bistrip& strip, const BistripAnalysis& a,
   set_default_option("deflation_", "max_solutions", std::to_string(a.equilibria + 1));
   DeflationSolver deflation(comm, problem, "deflation_");
   std::vector<Equilibrium> found(1);
-  found[0].state = OwnedVec(problem.create_vector());
-  GELX_PETSC(VecCopy(problem.unknowns(), found[0].state.get()));
-  found[0].negative_eigenvalues = path_negative_eigenvalues; // the last output's, of this state
+  // The path's state settled: a static Newton solve from it (a dynamic path ends moving, if
+  // slowly; the damped flow's end state is one already: 0 or 1 iterations), to
+  // |R| <= 1e-10 |R0| or 1e-9 N, its residual against the internal forces reported. Where
+  // it does not converge (measured: from the bistrip's three-perversion state after T = 0.3 s
+  // with inertia, |R| stalled at 0.012 N from 0.95 N with line-search steps of 1e-2, a flat
+  // landscape), the path's state is kept and the summary says "settled": false
+  set_default_options("settle_newton_", {{"snes_rtol", "1e-10"}, {"snes_atol", "1e-9"}});
+  NewtonSolver settle(comm, "settle_newton_");
+  const OwnedVec path_state = copy_of(problem.unknowns());
+  found[0].newton = settle.solve(problem);
+  summary["settled"] = found[0].newton.converged;
+  if (!found[0].newton.converged)
+    problem.set_state(path_state.get());
+  {
+    OwnedVec r(problem.create_vector()), f(problem.create_vector());
+    problem.residual(r.get());
+    problem.internal_forces(f.get());
+    PetscReal r_norm, f_norm;
+    GELX_PETSC(VecNorm(r.get(), NORM_2, &r_norm));
+    GELX_PETSC(VecNorm(f.get(), NORM_2, &f_norm));
+    summary["settled_residual"] = r_norm / f_norm;
+  }
+  found[0].state = copy_of(problem.unknowns());
+  found[0].negative_eigenvalues = found[0].newton.converged
+                                      ? tangent_negative_eigenvalues(comm, problem)
+                                      : path_negative_eigenvalues;
+  summary["settled_distance"] = deflation.distance(found[0].state.get(), path_state.get());
+  summary["path_negative_eigenvalues"] = path_negative_eigenvalues;
   deflation.deflate(found[0].state.get());
   std::vector<OwnedVec> guesses;
   std::vector<std::string> guess_names;
@@ -109,7 +135,8 @@ void seek_equilibria(MPI_Comm comm, Bistrip& strip, const BistripAnalysis& a,
     const CentrelineSamples c = strip.centreline();
     const auto helices = analyse_centreline(c, a.min_frame_turns);
     rows.push_back({{"equilibrium", i},
-                    {"origin", i == 0 ? "path" : "deflation"},
+                    {"origin", i == 0 ? (found[0].newton.converged ? "path, settled" : "path")
+                                      : "deflation"},
                     {"guess", origin[i]},
                     {"end_distance", strip.end_distance()},
                     {"strain_energy", energy_A + energy_B},

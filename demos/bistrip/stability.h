@@ -36,11 +36,13 @@ BondedBuckling bonded_buckling(MPI_Comm comm, Bistrip& strip, const BistripParam
                                nlohmann::json& summary);
 
 /// Other equilibria at the strip's end distance now by deflation: the current state (the
-/// path's, with `path_negative_eigenvalues` negative tangent eigenvalues) deflated, guesses it
-/// plus or minus each mode at a.guess_amplitude, until a.equilibria are found. Each: energy,
-/// its difference to the path's, stability, perversions (equilibria.csv,
-/// equilibria_centreline.csv, OUTPUT/equilibria/fields.xdmf, summary "equilibria"). Leaves
-/// the strip at the path's state. Collective.
+/// path's, with `path_negative_eigenvalues` negative tangent eigenvalues) settled by a static
+/// Newton solve (-settle_newton_*; summary "settled", "settled_residual" |R| / |f_int| and
+/// "settled_distance" from the path's state; unsettled where it fails) and deflated, guesses it plus or minus each mode
+/// at a.guess_amplitude, until a.equilibria are found. Each: energy, its difference to the
+/// settled path state's, stability, perversions (equilibria.csv, equilibria_centreline.csv,
+/// OUTPUT/equilibria/fields.xdmf, summary "equilibria"). Leaves the strip at the settled
+/// state. Collective.
 void seek_equilibria(MPI_Comm comm, Bistrip& strip, const BistripAnalysis& a,
                      const std::vector<BucklingMode>& modes, int path_negative_eigenvalues,
                      ResultsWriter& results, FieldSet& fields,

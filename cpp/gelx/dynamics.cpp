@@ -479,9 +479,6 @@ void DampedDynamics::pre_step()
 
 void DampedDynamics::save(PathState& state) const
 {
-  if (!_restartable)
-    throw InputError("-" + _prefix + "ts_type: only bdf runs of the damped flow restart");
-  const BdfState& bdf = bdf_state(_ts);
   PetscInt step;
   PetscReal t, dt;
   GELX_PETSC(TSGetStepNumber(_ts, &step));
@@ -490,11 +487,17 @@ void DampedDynamics::save(PathState& state) const
   state.step = step;
   state.load = t;
   state.step_size = dt;
+  // Another TS type than bdf: a checkpoint of the state only, which run() refuses to resume
+  // (so that the scenes' checkpoints after every step never stop such a run)
+  state.driver = {{"restartable", _restartable}};
+  if (!_restartable)
+    return;
+  const BdfState& bdf = bdf_state(_ts);
   for (PetscInt i = 0; i <= bdf.n; ++i)
     state.vectors["bdf_state_" + std::to_string(i)] = copy_of(bdf.work[i]);
   for (std::size_t i = 0; i < _history.size(); ++i)
     state.vectors["velocity_state_" + std::to_string(i)] = copy_of(_history[i].get());
-  state.driver = {{"bdf_order", bdf.k},
+  state.driver.update({{"bdf_order", bdf.k},
                   {"bdf_states", bdf.n},
                   {"bdf_times", std::vector<double>(bdf.time, bdf.time + bdf.n + 1)},
                   {"previous_time", _ts->ptime_prev},
@@ -502,7 +505,7 @@ void DampedDynamics::save(PathState& state) const
                   {"power", _power},
                   {"dissipated_energy", _summary.dissipated_energy},
                   {"kinetic_ratio", _summary.kinetic_ratio},
-                  {"rejected_steps", _summary.rejected_steps}};
+                  {"rejected_steps", _summary.rejected_steps}});
 }
 
 void DampedDynamics::accepted(int step, double t, Vec u)
@@ -593,7 +596,7 @@ DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observe
   _skip_first_monitor = _resuming = false;
   if (resume)
   {
-    if (!_restartable)
+    if (!_restartable || !resume->driver.value("restartable", false))
       throw InputError("-" + _prefix + "ts_type: only bdf runs of the damped flow restart");
     GELX_PETSC(TSSetSolution(_ts, x.get()));
     GELX_PETSC(TSSetUp(_ts));

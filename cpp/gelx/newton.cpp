@@ -359,6 +359,9 @@ NewtonReport NewtonSolver::run_snes(NonlinearSystem& system)
   PetscInt linear_iterations;
   GELX_PETSC(SNESGetLinearSolveIterations(_snes, &linear_iterations));
   report.linear_iterations = linear_iterations;
+  SNESType snes_type;
+  GELX_PETSC(SNESGetType(_snes, &snes_type));
+  report.snes_type = snes_type;
   SNESConvergedReason reason;
   GELX_PETSC(SNESGetConvergedReason(_snes, &reason));
   report.converged = _progress.converged;

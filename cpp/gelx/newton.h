@@ -23,6 +23,9 @@ struct NewtonReport
   double residual = 0;       ///< |R| at the end
   double error_estimate = 0; ///< estimated |x - x_exact| at the end (see NewtonSolver)
   std::string reason;        ///< why it stopped
+  /// The SNES type that solved (SNESGetType after the solve): what the options database and
+  /// the system's decorators actually set, recorded so a test can tell, e.g., a VI solve
+  std::string snes_type;
   /// |R| at the start and after each iteration (for convergence-rate checks)
   std::vector<double> residual_history;
 };

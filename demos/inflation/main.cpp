@@ -102,9 +102,12 @@ int main(int argc, char* argv[])
     gelx::ArcLength continuation(run.comm(), shell.system(),
                                  [&](double l) { shell.set_load_factor(l); });
     gelx::ResultsWriter& results = run.results(shell.mesh().mesh);
+    PetscInt num_unknowns; // the dofs, less the constrained ones with --symmetry constraints
+    GELX_PETSC(VecGetSize(shell.system().unknowns(), &num_unknowns));
     run.summary = {{"num_dofs",
                     shell.displacement()->function_space()->dofmap()->index_map->size_global()
-                        * 3}};
+                        * 3},
+                   {"num_unknowns", num_unknowns}};
 
     // 3. Reference cost: one Newton solve of plain load stepping to a tenth of the closed-form
     //    maximum pressure, from the unloaded state

@@ -237,7 +237,8 @@ int main(int argc, char* argv[])
                               {"final_contact_width_over_L", c.width / g.L},
                               {"final_contact_width_over_L_gap_law", c.width_gap_law / g.L},
                               {"area_ratio", c.width > 0 ? area_ratio : NAN},
-                              {"max_penetration", c.penetration}});
+                              {"max_penetration", c.penetration},
+                              {"newton_snes_type", step.newton.snes_type}});
         },
         run.start_path(pyramid.system()), run.checkpoints());
     const Fit by_d = curve.by_d(), by_d_gap_law = curve.by_d_gap_law(),

@@ -128,6 +128,14 @@ for restart_ranks, rtol in [(ranks, SAME_RTOL), (other_ranks, other_rtol)]:
     for key in quantities:
         checks.relative(f"{name}: {key}", summary[key], ref_summary[key], rtol)
 
+    # steps.csv: the rows up to the checkpoint are the killed run's, byte for byte (wall
+    # times included, which no second computation reproduces): the restart did not recompute
+    # them
+    kept = (out / "steps.csv").read_text().splitlines()[:restarted + 1]
+    checks.require(f"{name}: the {restarted} rows up to the checkpoint are the killed run's, "
+                   "byte for byte", kept == (killed / "steps.csv").read_text().splitlines()
+                   [:restarted + 1] and len(kept) == restarted + 1)
+
     # steps.csv: the reference's rows, each once, in order
     rows = rows_of(out)
     times = [float(r[columns[0]]) for r in rows]

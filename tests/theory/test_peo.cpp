@@ -7,6 +7,7 @@
 #include "theory/peo.h"
 
 #include <algorithm>
+#include <cmath>
 
 using namespace gelx::theory;
 
@@ -56,7 +57,44 @@ int main()
   check::that("Eq. 4.20 as printed does not reproduce Eq. A.7 (documented discrepancy)",
               largest_printed > 1e-3);
 
-  // 3. A free-gel equilibrium temperature really satisfies Eq. 4.7 with chi -> chi_bar.
+  // 3. Closed forms the solver of Eq. A.5-A.6 does not use (sections 1-3 check it against its
+  //    own equations). Without PEO-water bonds (K_p = e^-30 ~ 1e-13: p = 0 to 1e-12),
+  //    D = (1-phi)(1-q) and Eq. A.6 is the quadratic q = a (1-q)^2, a = 2 K_w (1-phi), whose
+  //    root in [0, 1) is q = 2a / (2a + 1 + sqrt(4a + 1)); chi_bar then follows from Eq. A.7
+  //    with p = 0. Tolerance 1e-11: the bracketed Newton solves D to ~1e-16 of its range,
+  //    and Eq. A.7's 2/phi^2 amplifies that (and the O(K_p) left of p) by at most 800 at
+  //    phi = 0.05 (measured 3.4e-13; a q0 off by 1e-6 relative fails it). Without any bonds (K_p = K_w = e^-30) the gel is Flory-Huggins':
+  //    chi_bar = chi(T), the bonds' terms being O(K_w / phi^2) < 1e-10
+  {
+    const PeoParameters no_peo_bonds{0.1, 60.0, 0.5, 0.0, 30.0, 1800.0, 4.0};
+    const PeoModel water_only(no_peo_bonds);
+    double worst_q = 0.0, worst_chi = 0.0;
+    for (double T : linspace(270.0, 370.0, 6))
+      for (double phi : linspace(0.05, 0.9, 18))
+      {
+        const double a = 2 * water_only.Kw(T) * (1 - phi), a0 = 2 * water_only.Kw(T);
+        const double q = 2 * a / (2 * a + 1 + std::sqrt(4 * a + 1));
+        const double q0 = 2 * a0 / (2 * a0 + 1 + std::sqrt(4 * a0 + 1));
+        const auto b = water_only.bonds(T, phi);
+        worst_q = std::max({worst_q, std::abs(b.q - q), std::abs(b.p)});
+        const double chi_bar_closed = water_only.chi(T) - 2 * q / phi
+                                      + 2 / (phi * phi) * (q - q0 + std::log(q / (q0 * (1 - phi))));
+        worst_chi = std::max(worst_chi, std::abs(water_only.chi_bar(T, phi) - chi_bar_closed));
+      }
+    check::near("no PEO-water bonds: p = 0 and q against the quadratic's root, worst", worst_q,
+                0.0, 1e-12);
+    check::near("no PEO-water bonds: chi_bar against Eq. A.7 with the closed-form q, worst",
+                worst_chi, 0.0, 1e-11);
+    const PeoModel no_bonds({0.1, 60.0, 0.5, 0.0, 30.0, 0.0, 30.0});
+    double worst_fh = 0.0;
+    for (double T : linspace(270.0, 370.0, 6))
+      for (double phi : linspace(0.05, 0.9, 18))
+        worst_fh = std::max(worst_fh, std::abs(no_bonds.chi_bar(T, phi) - no_bonds.chi(T)));
+    check::near("no hydrogen bonds: chi_bar = chi(T) (Flory-Huggins), worst", worst_fh, 0.0,
+                1e-10);
+  }
+
+  // 4. A free-gel equilibrium temperature really satisfies Eq. 4.7 with chi -> chi_bar.
   const PeoModel m(sets[1]);
   const auto T = peo_temperatures_free(m, 0.2, 0.002, 200.0, 600.0);
   std::printf("     free-gel equilibrium temperatures at phi = 0.2 (test set 2):");

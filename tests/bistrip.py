@@ -25,8 +25,14 @@ A clamped run (Table 3.1) checks:
   end faces, held in their plane, add boundary layers a width long that stiffen the response by
   O(w/L) of the force's change, and the seeded mode bends it slightly: measured 0.1 % and
   0.2 %), with no negative tangent eigenvalue;
-- at every output the energy balance: the work of the end force equals the change of strain
-  energy plus the dissipated energy within 1 % of the largest of the three (the issue's bound);
+- at every output of the damped flow the energy balance, recomputed here from the columns of
+  its terms: the work of the end force equals the change of the strips' strain energies plus
+  the dissipated energy within 2.5e-4 of the largest of the three (four times the measured
+  time-discretisation error); on a fast run (ctest bistrip_dissipation) the dissipation is 9 %
+  of the balance and is required to be at least 5 %, so that the balance checks it;
+- the end force against uniaxial stress only at outputs at rest, |R| <= 1e-4 |f_int| (steps.csv
+  static_residual), at least one; a run ending before the first critical distance stays
+  straight: no helix;
 - the settled state after the hold is stable: no negative tangent eigenvalue (an output taken
   while the strip leaves the straight state, which is slow just past the bifurcation, may
   count one: the full path shows it once, at 250 mm);
@@ -36,9 +42,10 @@ A clamped run (Table 3.1) checks:
   detection itself counts a quarter turn as a helix).
 - summary.json's time split: no part negative, assembly and solve measured (checks.time_split);
 - regression, next to those: the coarse mesh's first critical shortening (stored from this
-  mesh, 1e-4: the eigenvalue is converged to 1e-10 by SLEPc and the mesh is fixed), and its
-  end force and strip energies at 24.5 cm after the hold (1e-6: the settled state is an
-  equilibrium to Newton's tolerance, the same at 1 and 2 ranks to 2e-14).
+  mesh, 1e-8: the eigenvalue is converged to 1e-10 by SLEPc and the mesh is fixed) and within
+  5e-3 of the converged (length-wise extrapolated) 26.1007 mm, its measured mesh error being
+  4.3e-3; its end force and strip energies at 24.5 cm after the hold (1e-6), where the settled
+  state is required to be a static equilibrium, |R| <= 1e-9 |f_int| (measured 5e-13).
 
 usage: bistrip.py OUTPUT_DIR
 """
@@ -154,26 +161,48 @@ shortening = [float(r["critical_shortening"]) for r in eigen]
 coarse_run = (prm["nz"] == 40 and prm["degree"] == 2 and prm["w"] == 5
               and prm["end_distance"] == 245)
 if coarse_run:
+    # Regression: SLEPc converges the eigenvalue to 1e-10 and 1 and 2 ranks agree to 6e-10
+    # (measured), so 1e-8; next to it the converged value, the Richardson extrapolation of
+    # the Q2 meshes nz = 40, 60, 100 with the same one cell through each layer (README,
+    # "Work and precision": 26.1007 mm), within this mesh's measured error there, 4.3e-3
     checks.relative("first critical shortening (mm), regression of this coarse mesh",
-                    shortening[0], 25.98957319507, 1e-4)
+                    shortening[0], 25.9895793470535, 1e-8)
+    checks.relative("first critical shortening (mm) against the length-wise converged 26.1007",
+                    shortening[0], 26.1007, 5e-3)
 
 steps = rows("steps.csv")
 d_critical = prm["L"] - shortening[0]
 before = [r for r in steps if float(r["end_distance"]) > d_critical]
-checks.require(f"{len(before)} output(s) before the first critical end distance "
-               f"{d_critical:.2f} mm", len(before) >= 1)
+# The closed form is an equilibrium's: the outputs whose state is one to 1e-4 |f_int| (a fast
+# flow's states lag behind the end, measured |R| / |f_int| 2e-3 at the end of its ramp)
+at_rest = [r for r in before if float(r["static_residual"]) <= 1e-4]
+checks.require(f"{len(at_rest)} output(s) at rest before the first critical end distance "
+               f"{d_critical:.2f} mm", len(at_rest) >= 1)
 section = prm["w"] * prm["h"]
-for r in before:
+for r in at_rest:
     d = float(r["end_distance"])
     lt_A, s_A = uniaxial(prm["stretch"] * d / prm["L"])
     lt_B, s_B = uniaxial(d / prm["L"])
     force = (s_A * lt_A**2 + s_B * lt_B**2) * section
     checks.relative(f"end force (N) at d = {d:.3f} mm against uniaxial stress in both strips",
                     float(r["end_force"]), force, 5e-3)
-for r in steps:
-    d = float(r["end_distance"])
-    checks.absolute(f"energy balance at d = {d:.3f} mm: (W - dSE - ED) / max(|W|, |dSE|, ED)",
-                    float(r["energy_balance_error"]), 0.0, 1e-2)
+# The energy balance of the flow, W = dSE + ED, recomputed here from its terms' columns: the
+# end force's work, each strip's strain energy against the bonded state's (the prestress),
+# and the viscous dissipation. The work and the dissipation are both trapezoidal sums over
+# the accepted steps, so they agree to the time discretisation: 2.5e-4, four times the largest
+# error measured (5.9e-5 on the coarse path at TS tolerances 1e-3; 8.8e-5 on the fast run at
+# 1e-5, 1.6e-3 there at 1e-3). On the default path ED/|dSE| is ~1e-5, far below that bound, so
+# the dissipation itself is checked on the fast run (bistrip_dissipation: ED/|dSE| ~ 0.09)
+flow = prm["method"] == "dynamics"
+if flow:
+    energy_0 = summary["prestress_energy"]
+    for r in steps:
+        d = float(r["end_distance"])
+        W, ED = float(r["work"]), float(r["dissipated_energy"])
+        dSE = float(r["strain_energy_A"]) + float(r["strain_energy_B"]) - energy_0
+        checks.absolute(f"energy balance at d = {d:.3f} mm from the columns: "
+                        f"(W - dSE - ED) / max(|W|, |dSE|, ED), ED/|dSE| = {ED / abs(dSE):.2e}",
+                        (W - dSE - ED) / max(abs(W), abs(dSE), ED), 0.0, 2.5e-4)
 for r in before + steps[-1:]:
     checks.require(f"no negative tangent eigenvalue at d = {float(r['end_distance']):.3f} mm "
                    f"({r['negative_eigenvalues']})", int(r["negative_eigenvalues"]) == 0)
@@ -184,6 +213,8 @@ if coarse_run:
     # cross-section is meshed at the exact lateral stretch (it was rounded to 6 decimals,
     # 0.566404: the values moved by 1.1e-6)
     final = steps[-1]
+    checks.absolute("the settled state is a static equilibrium: |R| / |f_int|",
+                    float(final["static_residual"]), 0.0, 1e-9)
     for key, value in (("end_force", 44.660225491242), ("strain_energy_A", 5502.0076947519),
                        ("strain_energy_B", 334.347437674761)):
         checks.relative(f"{key} at 24.5 cm, regression of this coarse mesh", float(final[key]),
@@ -191,6 +222,19 @@ if coarse_run:
 
 helices = summary["helices"]
 slab = prm["L"] / prm["nz"]
+if prm["end_distance"] > d_critical:
+    # The whole run before the first critical end distance: the strip stays straight
+    checks.require(f"a straight strip: no helix ({len(helices['segments'])} segments), no "
+                   f"perversion", not helices["segments"] and not helices["perversions"])
+    if flow:
+        # The fast run (bistrip_dissipation): the dissipation is a term the balance above
+        # cannot pass without, ED/|dSE| >= 0.05 (measured 0.091 at c = 3e4/s, T = 0.25 s), so
+        # that the balance's 2.5e-4 checks ED to 0.3 % (left out, the balance is off by 8e-2)
+        last = steps[-1]
+        ratio = float(last["dissipated_energy"]) / abs(float(last["strain_energy_change"]))
+        checks.require(f"the dissipation is a large term of the balance: ED/|dSE| = "
+                       f"{ratio:.3f} >= 0.05", ratio >= 0.05)
+    checks.finish()
 checks.require(f"one perversion at the end ({helices['perversions']})",
                len(helices["perversions"]) == 1)
 if helices["perversions"]:

@@ -1,4 +1,5 @@
 #include "problem.h"
+#include "path.h"
 #include "petsc_utils.h"
 
 #include <algorithm>
@@ -151,6 +152,17 @@ void NonlinearProblem::internal_forces(Vec f) const
   assemble_local(f);
   GELX_PETSC(VecGhostUpdateBegin(f, ADD_VALUES, SCATTER_REVERSE));
   GELX_PETSC(VecGhostUpdateEnd(f, ADD_VALUES, SCATTER_REVERSE));
+}
+
+double NonlinearProblem::static_residual()
+{
+  OwnedVec r(create_vector()), f(create_vector());
+  residual(r.get());
+  internal_forces(f.get());
+  PetscReal r_norm, f_norm;
+  GELX_PETSC(VecNorm(r.get(), NORM_2, &r_norm));
+  GELX_PETSC(VecNorm(f.get(), NORM_2, &f_norm));
+  return r_norm / f_norm;
 }
 
 void NonlinearProblem::residual(Vec r)

@@ -66,6 +66,10 @@ public:
   /// constrained dofs are the reaction forces.
   void internal_forces(Vec f) const;
 
+  /// |R(u)| / |f_int(u)| at the current state, the reactions in f_int: how far the state is
+  /// from a static equilibrium, on the scale of the forces it carries. Collective.
+  double static_residual();
+
   std::shared_ptr<dolfinx::fem::Function<double>> u() const { return _u; }
   const BCs& bcs() const { return _bcs; }
 

@@ -161,6 +161,9 @@ void PathRecord::output(nlohmann::json row, double dissipated, double kinetic)
                          : (_work - change - kinetic - dissipated)
                                / std::max({std::abs(_work), std::abs(change), dissipated})},
               {"negative_eigenvalues", negative},
+              // How far from a static equilibrium the path's state is (the flow's and the
+              // motion's states carry viscous and inertial forces): |R| / |f_int|
+              {"static_residual", _strip.problem().static_residual()},
               {"segments", _analysis.segments.size()},
               {"perversions", _analysis.perversions.size()},
               {"perversion_positions", joined(_analysis.perversions)},
@@ -206,6 +209,7 @@ void PathRecord::output(nlohmann::json row, double dissipated, double kinetic)
                       {"work", _work},
                       {"energy_balance_error", row["energy_balance_error"]},
                       {"negative_eigenvalues", negative},
+                      {"static_residual", row["static_residual"]},
                       {"helices", _analysis.to_json()},
                       {"energy_peak", e.peak},
                       {"energy_peak_slab", e.peak_slab},

@@ -85,15 +85,7 @@ void seek_equilibria(MPI_Comm comm, Bistrip& strip, const BistripAnalysis& a,
   summary["settled"] = found[0].newton.converged;
   if (!found[0].newton.converged)
     problem.set_state(path_state.get());
-  {
-    OwnedVec r(problem.create_vector()), f(problem.create_vector());
-    problem.residual(r.get());
-    problem.internal_forces(f.get());
-    PetscReal r_norm, f_norm;
-    GELX_PETSC(VecNorm(r.get(), NORM_2, &r_norm));
-    GELX_PETSC(VecNorm(f.get(), NORM_2, &f_norm));
-    summary["settled_residual"] = r_norm / f_norm;
-  }
+  summary["settled_residual"] = problem.static_residual();
   found[0].state = copy_of(problem.unknowns());
   found[0].negative_eigenvalues = found[0].newton.converged
                                       ? tangent_negative_eigenvalues(comm, problem)

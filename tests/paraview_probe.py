@@ -1,6 +1,7 @@
 """pvbatch script: what ParaView's own XDMF reader makes of a fields.xdmf, as one JSON line on
 stdout (prefixed 'PROBE '): the reader, the time steps, and at the first and last step the data
-set's class, its points and cells, and each array's centring, components and range.
+set's class, its points and cells, each array's centring, components and range, and each array's
+values at four named places (the points and cells of least and greatest x + 2y + 3z).
 
 usage: pvbatch paraview_probe.py FIELDS_XDMF
 """
@@ -24,6 +25,28 @@ def arrays(attributes, centre):
     return found
 
 
+def named(data):
+    """Each array's values where the data set itself says: at the points of least and greatest
+    x + 2y + 3z (ties are unlikely on these meshes), at the cells of least and greatest such
+    centroid (the mean of their points), with those points' and centroids' coordinates."""
+    points = vtk_to_numpy(data.GetPoints().GetData())
+    key = points @ [1.0, 2.0, 3.0]
+    offsets = vtk_to_numpy(data.GetCells().GetOffsetsArray())
+    connectivity = vtk_to_numpy(data.GetCells().GetConnectivityArray())
+    centroids = [points[connectivity[a:b]].mean(axis=0) for a, b in zip(offsets[:-1], offsets[1:])]
+    cell_key = [c @ [1.0, 2.0, 3.0] for c in centroids]
+    at = {}
+    for attributes, where, order, xyz in ((data.GetPointData(), "Node", key, points),
+                                          (data.GetCellData(), "Cell", cell_key, centroids)):
+        for end, index in (("least", int(min(range(len(order)), key=order.__getitem__))),
+                           ("greatest", int(max(range(len(order)), key=order.__getitem__)))):
+            values = {attributes.GetArrayName(i):
+                      [float(v) for v in attributes.GetArray(i).GetTuple(index)]
+                      for i in range(attributes.GetNumberOfArrays())}
+            at[f"{where} {end}"] = {"xyz": [float(v) for v in xyz[index]], "values": values}
+    return at
+
+
 steps = {}
 for label, t in (("first", times[0]), ("last", times[-1])):
     reader.UpdatePipeline(t)
@@ -32,5 +55,6 @@ for label, t in (("first", times[0]), ("last", times[-1])):
     if data.IsA("vtkDataSet"):
         steps[label].update(points=data.GetNumberOfPoints(), cells=data.GetNumberOfCells(),
                             arrays={**arrays(data.GetPointData(), "Node"),
-                                    **arrays(data.GetCellData(), "Cell")})
+                                    **arrays(data.GetCellData(), "Cell")},
+                            named=named(data))
 print("PROBE " + json.dumps({"reader": reader.GetXMLName(), "times": times, "steps": steps}))

@@ -42,9 +42,15 @@ def build(cell, displacement_degree=2):
                                                c["bulk_compliance"])
         residual = ufl.derivative(lagrangian * dx, w, ufl.TestFunction(W))
         tangent = ufl.derivative(residual, w, ufl.TrialFunction(W))
+        # The total energy: the functional the residual is the derivative of, with its
+        # quadrature, so that d(energy)/d(load) is the reaction exactly for the discrete
+        # problem; at a solution it equals int psi dX (the pressure equation makes
+        # int p (c - bulk_compliance p) dX vanish)
+        total = lagrangian * dx
         out.update({f"residual_{name}": residual, f"tangent_{name}": tangent,
-                    f"stress_{name}": stress[name], f"psi_{name}": energy})
-        forms += [residual, tangent]
+                    f"stress_{name}": stress[name], f"psi_{name}": energy,
+                    f"energy_{name}": total})
+        forms += [residual, tangent, total]
         expressions += [(stress[name], centroid), (energy, centroid)]
     out["det_F"] = J
     expressions.append((J, materials.quadrature_points(cell, degree)))

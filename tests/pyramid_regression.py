@@ -9,9 +9,11 @@ invariants.
   contact method moves them by far more;
 - no node behind the substrate (an exact active set: 0 up to the 1e-10 release band of
   RigidPlaneContact);
-- the width grows with the indentation at a slope between 0.7 and 1, with the patch's corner
-  located by the level set and by the gap's 3/2 law: below the truncated pyramid's 1 and near
-  the thesis' 0.86;
+- the width grows with the indentation at a slope within 8 % of the mesh-converged 0.8793
+  (README), with the patch's corner located by the level set and by the gap's 3/2 law (these
+  coarse meshes differ from it by 1.1 to 7.0 %);
+- the work-energy identity: the stored energy (the assembled Lagrangian) equals the substrate's
+  work int f dd, integrated here from the steps' forces, at every step;
 - the STL surface of the last step: the deformed pyramid's top lies on the substrate,
   z = t + H - d (to float32 round-off: STL stores single precision), and every triangle faces
   up, out of the body (the lateral faces' outward normals have n_z > 0 and keep it in contact).
@@ -52,9 +54,35 @@ for key in reference:
         checks.relative(f"{key} against the stored value", s[key], reference[key], 1e-6)
 checks.newton_tolerance(list(csv.DictReader(open(out / "steps.csv"))))
 checks.absolute("largest penetration (um)", s["max_penetration"], 0, 1e-8)
+# The slopes against the mesh-converged 0.8793 (README "Work precision", fit to d/H = 0.8): these coarse meshes' slopes differ from it by 1.1 % to 7.0 % (measured, both
+# orders, both corner estimators, the extrapolated one included), so 8 %
 for key in ("slope_lc_vs_d", "slope_lc_vs_d_gap_law"):
-    checks.require(f"{key}: slope of l_c/L against d/H {s[key]:.4f} in (0.7, 1)",
-                   0.7 < s[key] < 1.0)
+    checks.relative(f"{key}: slope of l_c/L against d/H, against the converged 0.8793", s[key],
+                    0.8793, 0.08)
+
+# Work and energy: frictionless contact with an exact active set dissipates nothing, so the
+# stored energy (steps.csv strain_energy, the assembled Lagrangian whose derivative the
+# residual is) equals the substrate's work int f dd (f from the contact forces) at every step.
+# The work is integrated here from the steps' forces (f(0) = 0 at first touch) by local
+# cubics through the four nearest steps, exact for a cubic; f(d) ~ d^2 is smooth between the
+# nodes' arrivals in the patch, which kink it, and the quadrature errs there (measured: up to
+# 9e-3 of the energy at that step, 9.6e-5 of the final energy with Q2-Q1 and 2.2e-4 with
+# Q1-P0, whose patch gains more nodes per step; 4.5e-7 at the last step, Q2-Q1): 5e-4 of the
+# final energy at every step. The work of a force off by 1 % fails it at 22 of 36 steps
+rows = list(csv.DictReader(open(out / "steps.csv")))
+H = p["L"] / math.sqrt(2)
+d = np.array([0.0] + [float(r["d_over_H"]) * H for r in rows])
+f = np.array([0.0] + [float(r["force"]) for r in rows])
+energy = np.array([0.0] + [float(r["strain_energy"]) for r in rows])
+work = np.zeros_like(d)
+for k in range(len(d) - 1):
+    near = np.clip(np.arange(k - 1, k + 3), 0, len(d) - 1)
+    near = np.unique(near)
+    cubic = np.polyint(np.polyfit(d[near], f[near], len(near) - 1))
+    work[k + 1] = work[k] + np.polyval(cubic, d[k + 1]) - np.polyval(cubic, d[k])
+for k in range(1, len(d)):
+    checks.absolute(f"d/H = {d[k] / H:.3f}: (the substrate's work int f dd - the stored energy) "
+                    f"/ the final energy", (work[k] - energy[k]) / energy[-1], 0.0, 5e-4)
 
 stl = sorted((out / "surface").glob("step_*.stl"))[-1].read_bytes()
 count = int(np.frombuffer(stl[80:84], "<u4")[0])

@@ -219,6 +219,7 @@ int main(int argc, char* argv[])
           results.append_step({{"step", step.step},
                                {"d_over_H", d},
                                {"force", c.force},
+                               {"strain_energy", pyramid.strain_energy()},
                                {"contact_width_over_L", c.width / g.L},
                                {"contact_width_over_L_gap_law", c.width_gap_law / g.L},
                                {"contact_area", c.area},

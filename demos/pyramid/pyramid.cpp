@@ -26,6 +26,7 @@ struct LawForms
   ufcx_expression *stress, *energy_density, *det_F;
   ufcx_form* contact_area;
   ufcx_form* pressure_mass; ///< preconditions the fieldsplit solver's Schur complement
+  ufcx_form* energy;        ///< the stored energy, int of the Lagrangian
 };
 
 LawForms law_forms(const std::string& law, int order)
@@ -35,35 +36,41 @@ LawForms law_forms(const std::string& law, int order)
        {functionspace_form_mixed_hex_residual_nh, form_mixed_hex_residual_nh,
         form_mixed_hex_tangent_nh, expression_mixed_hex_stress_nh, expression_mixed_hex_psi_nh,
         expression_mixed_hex_det_F,
-        form_contact_hex_contact_area, form_mixed_hex_pressure_mass}},
+        form_contact_hex_contact_area, form_mixed_hex_pressure_mass,
+        form_mixed_hex_energy_nh}},
       {{"mr", 2},
        {functionspace_form_mixed_hex_residual_mr, form_mixed_hex_residual_mr,
         form_mixed_hex_tangent_mr, expression_mixed_hex_stress_mr, expression_mixed_hex_psi_mr,
         expression_mixed_hex_det_F,
-        form_contact_hex_contact_area, form_mixed_hex_pressure_mass}},
+        form_contact_hex_contact_area, form_mixed_hex_pressure_mass,
+        form_mixed_hex_energy_mr}},
       {{"le", 2},
        {functionspace_form_mixed_hex_residual_le, form_mixed_hex_residual_le,
         form_mixed_hex_tangent_le, expression_mixed_hex_stress_le, expression_mixed_hex_psi_le,
         expression_mixed_hex_det_F,
-        form_contact_hex_contact_area, form_mixed_hex_pressure_mass}},
+        form_contact_hex_contact_area, form_mixed_hex_pressure_mass,
+        form_mixed_hex_energy_le}},
       {{"nh", 1},
        {functionspace_form_mixed_hex_q1_residual_nh, form_mixed_hex_q1_residual_nh,
         form_mixed_hex_q1_tangent_nh, expression_mixed_hex_q1_stress_nh,
         expression_mixed_hex_q1_psi_nh, expression_mixed_hex_q1_det_F,
         form_contact_hex_q1_contact_area,
-        form_mixed_hex_q1_pressure_mass}},
+        form_mixed_hex_q1_pressure_mass,
+        form_mixed_hex_q1_energy_nh}},
       {{"mr", 1},
        {functionspace_form_mixed_hex_q1_residual_mr, form_mixed_hex_q1_residual_mr,
         form_mixed_hex_q1_tangent_mr, expression_mixed_hex_q1_stress_mr,
         expression_mixed_hex_q1_psi_mr, expression_mixed_hex_q1_det_F,
         form_contact_hex_q1_contact_area,
-        form_mixed_hex_q1_pressure_mass}},
+        form_mixed_hex_q1_pressure_mass,
+        form_mixed_hex_q1_energy_mr}},
       {{"le", 1},
        {functionspace_form_mixed_hex_q1_residual_le, form_mixed_hex_q1_residual_le,
         form_mixed_hex_q1_tangent_le, expression_mixed_hex_q1_stress_le,
         expression_mixed_hex_q1_psi_le, expression_mixed_hex_q1_det_F,
         form_contact_hex_q1_contact_area,
-        form_mixed_hex_q1_pressure_mass}}};
+        form_mixed_hex_q1_pressure_mass,
+        form_mixed_hex_q1_energy_le}}};
   const auto it = table.find({law, order});
   if (it == table.end())
     throw InputError("no pyramid form for law '" + law + "' at order " + std::to_string(order)
@@ -147,6 +154,12 @@ PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry,
 
   _u = collapse_sub_function(*_w, 0);
   _area = _contact->area_form(*kernels.contact_area, _u);
+  _energy = form(kernels.energy, {});
+}
+
+double PressedPyramid::strain_energy() const
+{
+  return _images.size() * assemble_global_scalar(*_energy);
 }
 
 void PressedPyramid::set_indentation(double d) { _contact->set_position(_g.t + _H - d); }

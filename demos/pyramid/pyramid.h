@@ -69,6 +69,10 @@ public:
   /// displacement(). Collective.
   ContactMeasures measure();
 
+  /// The stored energy of the whole pyramid (the modelled part times its images), in the units
+  /// of force times length. Collective.
+  double strain_energy() const;
+
   /// The candidate nodes of the whole pyramid (current x, y, contact force, 1 in contact or
   /// 0) within twice the patch's reach of the axis, on rank 0 (others: empty): a pressure map
   /// that shows the patch's edges between contact and free nodes, at the last measure(). Each
@@ -122,7 +126,7 @@ private:
   std::unique_ptr<MultipointConstraint> _diagonal_slip; ///< the eighth's only
   std::unique_ptr<RigidPlaneContact> _contact;
   std::shared_ptr<const dolfinx::fem::Expression<double>> _stress, _energy_density;
-  std::shared_ptr<dolfinx::fem::Form<double>> _area;
+  std::shared_ptr<dolfinx::fem::Form<double>> _area, _energy;
 };
 
 } // namespace gelx::scenes

@@ -5,9 +5,11 @@
              (the thesis: the rightmost turns ~360 degrees more than the others from 23.3 to
              13.9 cm), and the energy condensation Ee(n) at each (peak height and width; the
              least Ee between neighbours against the helix background: repulsion)
-  fig3.3     loading rate: end speeds v = 67 mm / T for T = 0.1 and 1 s; (a) the end stops at
-             23.3 cm (travel 67 mm, loading time T), (b) it passes 23.3 cm on its way to 9 cm
-             (travel 210 mm, loading time T 210/67: the same mean speed). Perversions at 23.3 cm
+  fig3.3     loading rate: end speeds v = 67 mm / T for T = 0.1 and 1 s (--fig3.3-times); (a)
+             the end stops at 23.3 cm (travel 67 mm, loading time T), (b) it passes 23.3 cm on
+             its way to 9 cm (travel 210 mm, loading time T 210/67: the same mean speed).
+             Perversions at 23.3 cm. The path model is the damped flow unless
+             --fig3.3-method inertia (or explicit) asks for the equation of motion
   fig3.8     pre-compressed strip (Figs. 3.8, 3.9): section "B 3x3, A 3x3", stretch 0.4 (L' =
              75 cm; random imperfection, the bonded strip left to buckle first), 30 -> 15 cm and
              back out to 30 cm, outputs every 2 mm: perversion count along both legs, events
@@ -51,7 +53,8 @@ deflation run) to smoke-test the whole sweep: about 15 minutes at 1 rank on the 
 
 usage: sweep.py BUILD_DIR OUTPUT_DIR [--np N]
                 [--studies fig3.7,fig3.3,fig3.8,fig3.9,fig3.10,deflation]
-                [--quick] [--fig3.3-w 5] [scene options and PETSc options, given to every run]
+                [--quick] [--fig3.3-w 5] [--fig3.3-method dynamics|inertia|explicit]
+                [--fig3.3-times 0.1,1] [scene options and PETSc options, given to every run]
 Results: OUTPUT_DIR/<study>.csv (+ extra CSVs) and .png, OUTPUT_DIR/timing.csv (each run's
 wall time), runs under OUTPUT_DIR/runs/<study>/<name>. A run folder that holds a completed run
 is reused, so an interrupted sweep resumes; a study whose run fails is reported and skipped.
@@ -87,6 +90,13 @@ parser.add_argument("--studies", default=",".join(STUDIES), help="studies to run
 parser.add_argument("--quick", action="store_true", help="shrink every study (smoke test)")
 parser.add_argument("--fig3.3-w", dest="fig3_3_w", type=float, default=5,
                     help="strip width of the loading-rate study (mm)")
+parser.add_argument("--fig3.3-method", dest="fig3_3_method", default="dynamics",
+                    choices=["dynamics", "inertia", "explicit"],
+                    help="the loading-rate study's path model: the damped flow (quasi-static at "
+                         "every rate, demos/bistrip/README.md), or with inertia")
+parser.add_argument("--fig3.3-times", dest="fig3_3_times",
+                    help="the loading-rate study's loading times T of case (a) (s, comma list; "
+                         "default 0.1,1, with --quick 1)")
 args, scene_options = parser.parse_known_args()
 QUICK = args.quick
 L = 300.0  # mm, the strip's length in every study
@@ -252,7 +262,10 @@ def fig3_3():
     hold. The smooth-step ramp starts and ends at rest, so the end's speed at 23.3 cm is 0 in
     (a) and near its peak in (b): both the mean speed (travel / loading time) and, for (b),
     the speed measured between the outputs around 23.3 cm are reported."""
-    times = [1.0] if QUICK else [0.1, 1.0]
+    times = ([float(t) for t in args.fig3_3_times.split(",")] if args.fig3_3_times
+             else [1.0] if QUICK else [0.1, 1.0])
+    method = args.fig3_3_method
+    prefix = {"dynamics": "dynamics_", "inertia": "inertial_", "explicit": "explicit_"}[method]
     far_end = 200 if QUICK else 90
     travel_a, travel_b = L - THESIS_DISTANCE, L - far_end
     every = travel_a / 6
@@ -260,16 +273,17 @@ def fig3_3():
     for T in times:
         for case, travel, end in (("a", travel_a, THESIS_DISTANCE), ("b", travel_b, far_end)):
             loading = T * travel / travel_a
-            folder, _ = run("fig3.3", f"{case}_T{loading:.4g}", *options(
-                {"dynamics_loading_time": loading}, w=args.fig3_3_w, nz=NZ, end_distance=end,
-                output_every=every))
+            folder, _ = run("fig3.3", f"{method}_{case}_T{loading:.4g}", *options(
+                {prefix + "loading_time": loading}, method=method, w=args.fig3_3_w, nz=NZ,
+                end_distance=end, output_every=every))
             steps = table(folder, "steps.csv")
             at = steps[-1] if case == "a" else nearest(steps, THESIS_DISTANCE)
             k = steps.index(at)
             speed = (0.0 if case == "a" else
                      (float(steps[k - 1]["end_distance"]) - float(steps[k + 1]["end_distance"]))
                      / (float(steps[k + 1]["time"]) - float(steps[k - 1]["time"])))
-            rows.append({"case": case, "loading_time": loading, "travel": travel,
+            rows.append({"method": method, "case": case, "loading_time": loading,
+                         "travel": travel,
                          "mean_end_speed": travel / loading, "end_speed_at_233": speed,
                          "end_distance": float(at["end_distance"]),
                          "perversions": int(at["perversions"]),
@@ -289,7 +303,7 @@ def fig3_3():
                                    "b": f"(b) passes 23.3 cm on to {far_end / 10:g} cm"}[case])
     ax.yaxis.set_major_locator(MaxNLocator(integer=True))
     ax.set(xlabel="mean end speed (mm/s)", ylabel="perversions at 23.3 cm",
-           title=f"Fig. 3.3: loading rate, w = {args.fig3_3_w:g} mm")
+           title=f"Fig. 3.3: loading rate, w = {args.fig3_3_w:g} mm, --method {method}")
     ax.legend()
     ax.grid(alpha=0.3)
     fig.tight_layout()

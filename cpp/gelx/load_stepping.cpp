@@ -74,8 +74,12 @@ void LoadStepper::run(PathState& state, const std::vector<StepObserver>& observe
         _apply_load(t); // leave loads consistent with the last completed state
         std::ostringstream msg;
         msg << "load step from t = " << t << " to " << t + dt << " failed (" << report.reason
-            << ") after " << cutbacks << " cut-backs (max_cutbacks = " << _options.max_cutbacks
-            << ", dt_min = " << _options.dt_min << ")";
+            << ") after " << cutbacks << " cut-backs, and no further one was tried: ";
+        if (cutbacks == _options.max_cutbacks)
+          msg << "max_cutbacks = " << _options.max_cutbacks << " reached";
+        else
+          msg << "the next step, " << dt * _options.cut << ", would be below dt_min = "
+              << _options.dt_min;
         throw ConvergenceError(msg.str());
       }
       if (root)

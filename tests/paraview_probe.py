@@ -8,6 +8,8 @@ usage: pvbatch paraview_probe.py FIELDS_XDMF
 import json
 import sys
 
+import numpy as np
+
 from paraview import servermanager, simple
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
@@ -30,16 +32,15 @@ def named(data):
     x + 2y + 3z (ties are unlikely on these meshes), at the cells of least and greatest such
     centroid (the mean of their points), with those points' and centroids' coordinates."""
     points = vtk_to_numpy(data.GetPoints().GetData())
-    key = points @ [1.0, 2.0, 3.0]
     offsets = vtk_to_numpy(data.GetCells().GetOffsetsArray())
     connectivity = vtk_to_numpy(data.GetCells().GetConnectivityArray())
-    centroids = [points[connectivity[a:b]].mean(axis=0) for a, b in zip(offsets[:-1], offsets[1:])]
-    cell_key = [c @ [1.0, 2.0, 3.0] for c in centroids]
+    centroids = np.array([points[connectivity[a:b]].mean(axis=0)
+                          for a, b in zip(offsets[:-1], offsets[1:])])
     at = {}
-    for attributes, where, order, xyz in ((data.GetPointData(), "Node", key, points),
-                                          (data.GetCellData(), "Cell", cell_key, centroids)):
-        for end, index in (("least", int(min(range(len(order)), key=order.__getitem__))),
-                           ("greatest", int(max(range(len(order)), key=order.__getitem__)))):
+    for attributes, where, xyz in ((data.GetPointData(), "Node", points),
+                                   (data.GetCellData(), "Cell", centroids)):
+        order = xyz @ [1.0, 2.0, 3.0]
+        for end, index in (("least", int(np.argmin(order))), ("greatest", int(np.argmax(order)))):
             values = {attributes.GetArrayName(i):
                       [float(v) for v in attributes.GetArray(i).GetTuple(index)]
                       for i in range(attributes.GetNumberOfArrays())}

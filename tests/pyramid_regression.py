@@ -52,10 +52,12 @@ checks.require(f"run {s['status']} to d/H = {s['final_d_over_H']}",
 for key in reference:
     if key != "options":
         checks.relative(f"{key} against the stored value", s[key], reference[key], 1e-6)
-checks.newton_tolerance(list(csv.DictReader(open(out / "steps.csv"))))
+rows = list(csv.DictReader(open(out / "steps.csv")))
+checks.newton_tolerance(rows)
 checks.absolute("largest penetration (um)", s["max_penetration"], 0, 1e-8)
-# The slopes against the mesh-converged 0.8793 (README "Work precision", fit to d/H = 0.8): these coarse meshes' slopes differ from it by 1.1 % to 7.0 % (measured, both
-# orders, both corner estimators, the extrapolated one included), so 8 %
+# The slopes against the mesh-converged 0.8793 (README "Work precision", fit to d/H = 0.8):
+# these coarse meshes' slopes differ from it by 1.1 % to 7.0 % (measured, both orders, both
+# corner estimators, the extrapolated one included), so 8 %
 for key in ("slope_lc_vs_d", "slope_lc_vs_d_gap_law"):
     checks.relative(f"{key}: slope of l_c/L against d/H, against the converged 0.8793", s[key],
                     0.8793, 0.08)
@@ -69,15 +71,13 @@ for key in ("slope_lc_vs_d", "slope_lc_vs_d_gap_law"):
 # 9e-3 of the energy at that step, 9.6e-5 of the final energy with Q2-Q1 and 2.2e-4 with
 # Q1-P0, whose patch gains more nodes per step; 4.5e-7 at the last step, Q2-Q1): 5e-4 of the
 # final energy at every step. The work of a force off by 1 % fails it at 22 of 36 steps
-rows = list(csv.DictReader(open(out / "steps.csv")))
 H = p["L"] / math.sqrt(2)
 d = np.array([0.0] + [float(r["d_over_H"]) * H for r in rows])
 f = np.array([0.0] + [float(r["force"]) for r in rows])
 energy = np.array([0.0] + [float(r["strain_energy"]) for r in rows])
 work = np.zeros_like(d)
 for k in range(len(d) - 1):
-    near = np.clip(np.arange(k - 1, k + 3), 0, len(d) - 1)
-    near = np.unique(near)
+    near = np.unique(np.clip(np.arange(k - 1, k + 3), 0, len(d) - 1))
     cubic = np.polyint(np.polyfit(d[near], f[near], len(near) - 1))
     work[k + 1] = work[k] + np.polyval(cubic, d[k + 1]) - np.polyval(cubic, d[k])
 for k in range(1, len(d)):
@@ -102,9 +102,8 @@ X, _ = series.mesh(-1)
 z = X[:, 2] + series.field("displacement", -1)[:, 2]
 status, gap, force = (series.field(f"contact_{name}", -1).ravel()
                       for name in ("status", "gap", "force"))
-H = p["L"] / math.sqrt(2)
 touching = status > 0.5
-last_row = list(csv.DictReader(open(out / "steps.csv")))[-1]
+last_row = rows[-1]
 # 1e-12: the output interpolates the vertex values into the output space, exact to round-off
 checks.require(f"contact_status is 0 or 1 (to 1e-12) at every node, 1 at {touching.sum()} nodes",
                np.all(np.minimum(np.abs(status), np.abs(status - 1)) < 1e-12)

@@ -1,5 +1,5 @@
-"""`./gelx view` on a block run: the PNG it writes (tools/view.py, rendered by pvbatch under
-xvfb-run) shows the deformed block coloured by von Mises stress over the colour map's range.
+"""`./gelx view` on a block run: the PNG it writes (tools/view.py, rendered by pvbatch on its
+own Xvfb) shows the deformed block coloured by von Mises stress over the colour map's range.
 
 Checks, on the pixels: the picture has the requested size; the body covers a sensible part of
 it (not an empty or a flooded view: 5-80 % of the pixels differ from the white background);
@@ -7,13 +7,21 @@ the body is coloured by the field, not flat-shaded: among its pixels, both ends 
 cool-to-warm map appear (blue-dominated and red-dominated pixels, each at least 1 % of the
 body), which a grey surface or a constant field cannot give; and a second picture at the first
 step, where the block is barely twisted and the stress is low, differs from the last one.
+A render interrupted midway (SIGINT to its process group, as Ctrl-C sends) leaves no process
+of its own behind within 10 s. A render killed (SIGKILL) but for its Xvfb, as a timeout's kill
+that misses the display server, holds up no later render: the next finishes within 120 s.
+Before, the render lock was inherited by xvfb-run's Xvfb, and when it outlived its render
+every later render waited forever (seen under ctest -j2; this check hung on that code).
 
 usage: paraview_picture.py BLOCK_RESULTS OUT_DIR
 """
 import pathlib
+import os
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 import matplotlib.image
 import numpy as np
@@ -24,17 +32,24 @@ results, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
 out.mkdir(parents=True, exist_ok=True)
 gelx = pathlib.Path(__file__).resolve().parents[1] / "gelx"
 checks = Checks()
-missing = [p for p in ("xvfb-run", "pvbatch") if shutil.which(p) is None]
-checks.require(f"xvfb-run and pvbatch are installed (missing: {missing})", not missing)
+missing = [p for p in ("Xvfb", "pvbatch") if shutil.which(p) is None]
+checks.require(f"Xvfb and pvbatch are installed (missing: {missing})", not missing)
 if missing:
     checks.finish()
 
 
-def render(step):
+def view(step, png):
+    return [str(gelx), "view", "block", "--output", str(results), "--step", str(step),
+            "--png", str(png)]
+
+
+def render(step, timeout=300):
     png = out / f"block_step{step}.png"
-    run = subprocess.run([str(gelx), "view", "block", "--output", str(results), "--step",
-                          str(step), "--png", str(png)], capture_output=True, text=True,
-                         timeout=300)
+    try:
+        run = subprocess.run(view(step, png), capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        checks.require(f"./gelx view rendered step {step} within {timeout} s", False)
+        checks.finish()
     checks.require(f"./gelx view rendered step {step} (exit code {run.returncode}): "
                    f"{run.stdout.strip()}", run.returncode == 0 and png.is_file())
     if run.returncode != 0:
@@ -53,7 +68,58 @@ r, b = last[..., 0][body], last[..., 2][body]
 blue, red = np.mean(b > r + 0.2), np.mean(r > b + 0.2)
 checks.require(f"coloured by the field: {blue:.1%} blue-dominated and {red:.1%} red-dominated "
                f"pixels of the body (each at least 1 %)", blue > 0.01 and red > 0.01)
-first = render(0)
+
+
+def processes_of_group(group):
+    """The live processes (not zombies) of a process group, by /proc"""
+    found = []
+    for stat in pathlib.Path("/proc").glob("[0-9]*/stat"):
+        try:
+            # the command is in parentheses and may hold spaces: the fields follow the last ')'
+            text = stat.read_text()
+        except OSError:
+            continue
+        fields = text[text.rindex(")") + 2:].split()
+        if fields[0] != "Z" and int(fields[2]) == group:
+            found.append(text[text.index("(") + 1:text.rindex(")")])
+    return found
+
+
+interrupted = subprocess.Popen(view(0, out / "interrupted.png"), stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL, start_new_session=True)
+time.sleep(4)  # past the display's start: pvbatch is rendering
+os.killpg(interrupted.pid, signal.SIGINT)
+interrupted.wait()
+for _ in range(100):
+    left = processes_of_group(interrupted.pid)
+    if not left:
+        break
+    time.sleep(0.1)
+checks.require(f"an interrupted render left no process behind within 10 s (left: {left})",
+               not left)
+if left:
+    os.killpg(interrupted.pid, signal.SIGKILL)  # not to hold up the rest of the suite
+
+killed = subprocess.Popen(view(0, out / "killed.png"), stdout=subprocess.DEVNULL,
+                          stderr=subprocess.DEVNULL, start_new_session=True)
+time.sleep(4)
+for _ in range(3):  # the whole process group but the display server, SIGKILL: no trap runs
+    for stat in pathlib.Path("/proc").glob("[0-9]*/stat"):
+        try:
+            text = stat.read_text()
+            fields = text[text.rindex(")") + 2:].split()
+            if int(fields[2]) == killed.pid and "Xvfb" not in text[:text.rindex(")")]:
+                os.kill(int(stat.parent.name), signal.SIGKILL)
+        except (OSError, ValueError):
+            continue
+killed.wait()
+start = time.time()
+first = render(0, timeout=120)
+print(f"after a render killed midway, the next took {time.time() - start:.0f} s")
+try:
+    os.killpg(killed.pid, signal.SIGKILL)  # its Xvfb, if it outlived the render
+except ProcessLookupError:
+    pass
 changed = np.mean(np.any(np.abs(first - last) > 0.1, axis=2))
 checks.require(f"the first step's picture differs from the last's in {changed:.1%} of the pixels "
                f"(at least 5 %)", changed > 0.05)

@@ -31,6 +31,11 @@ checks = Checks()
 error_prefix = f"gelx-{scene}: error: "
 serial = scene == "flory_rehner"  # no MPI, no PETSc
 
+# A mesh that ignores the scene's dimensions: the block's geometry with a fixed height of 3
+tall_geo = work / "tall.geo"
+tall_geo.write_text((pathlib.Path(__file__).resolve().parents[1] / "meshes" / "block.geo")
+                    .read_text().replace("H = 2.0, ", "").replace("SetFactory", "H = 3;\nSetFactory"))
+
 # Each scene's own refusals: (case name, arguments, what the error line must say). The cases
 # named in TWO_RANKS are raised after MPI start-up and are repeated at 2 ranks.
 CASES = {
@@ -43,6 +48,12 @@ CASES = {
          "unknown option set (direct, amg, fieldsplit)"),
         ("fieldsplit_not_mixed", ["-newton_linear_solver", "fieldsplit"],
          "needs a mixed displacement-pressure space"),
+        ("malformed_mesh", ["--mesh", "/etc/passwd"],
+         "mesh file '/etc/passwd': gmsh: '/etc/passwd', line 1: syntax error"),
+        # at least 2e27 cells: refused before gmsh meshes (which would not end)
+        ("absurd_mesh_size", ["--h", "1e-9"], "the mesh would have at least 2e+27 cells"),
+        ("mesh_of_other_height", ["--mesh", str(tall_geo)],
+         "the mesh spans z from 0 to 3, but --height makes it 0 to 2"),
     ],
     "pyramid": [
         ("W_equal_L", ["--W", "8", "--L", "8"], "W must exceed the pyramid width L"),
@@ -104,7 +115,9 @@ CASES = {
          "seed_mode must be one of the computed modes"),
     ],
 }
-TWO_RANKS = {"block": ["missing_mesh", "dt_above_dt_max", "fieldsplit_not_mixed"], "pyramid": ["W_below_L"],
+TWO_RANKS = {"block": ["missing_mesh", "dt_above_dt_max", "fieldsplit_not_mixed",
+                       "malformed_mesh", "absurd_mesh_size", "mesh_of_other_height"],
+             "pyramid": ["W_below_L"],
              "inflation": ["B_equal_A"], "buckling": ["ty_equal_tx"],
              "fiber_gel": ["cell_narrower_than_fiber", "phi_f_beyond_one"],
              "bistrip": ["unknown_layer_kind", "end_distance_beyond_L"]}
@@ -281,6 +294,19 @@ if scene == "block":
                    f"displacement of shape {u.shape}", len(fields.times) == 1 and u.shape[1] == 3)
     rows = (out / "steps.csv").read_text().strip().splitlines()
     checks.require(f"forced_divergence: steps.csv has {len(rows) - 1} data row", len(rows) == 2)
+
+    # A misspelt option of a solver that has run ends the run at the first step's end, not
+    # after its last: one line, one row kept, a failed summary
+    out = work / "misspelt_option"
+    p = run(["--output", str(out), "--h", "0.5", "--dt", "0.05", "-newton_snes_rtoll", "1e-8"],
+            timeout=600)
+    one_error_line("misspelt_option", p, "no solver object read the option(s) "
+                   "-newton_snes_rtoll (misspelt?")
+    rows = (out / "steps.csv").read_text().strip().splitlines()
+    summary = read_summary(out)
+    checks.require(f"misspelt_option: stopped after the first step: {len(rows) - 1} data row "
+                   f"of 20, summary status {summary.get('status', '')[:50]!r}...",
+                   len(rows) == 2 and summary.get("status", "").startswith("failed: no solver"))
 
 if scene == "bistrip":
     # A damped path whose time steps fall below -dynamics_min_step stops with one line and a

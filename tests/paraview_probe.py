@@ -14,7 +14,8 @@ from paraview import servermanager, simple
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 reader = simple.OpenDataFile(sys.argv[1])
-times = [float(t) for t in reader.TimestepValues]
+values = reader.TimestepValues  # one float when the file holds one step
+times = [float(values)] if isinstance(values, (int, float)) else [float(t) for t in values]
 
 
 def arrays(attributes, centre):

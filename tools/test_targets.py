@@ -21,5 +21,7 @@ if any("command" not in test for test in tests):
     sys.exit(0)
 named = {pathlib.Path(word).name for test in tests for word in test["command"]
          if build in pathlib.Path(word).parents}
-# CMake names each executable after its target
+# CMake names each executable after its target, and a shared library lib<target>.so (one a
+# test preloads)
+named |= {name[3:-3] for name in named if name.startswith("lib") and name.endswith(".so")}
 print("\n".join(sorted(named & known)))

@@ -63,7 +63,9 @@ except Exception as e:  # ParaView raises a bare RuntimeError for an unreadable 
     fail(f"cannot read {xdmf}: {e}")
 if reader is None:
     fail(f"cannot read {xdmf}")
-times = list(reader.TimestepValues) or [0.0]
+# ParaView gives a list of the times, one float for a single step, or nothing for none
+values = reader.TimestepValues
+times = ([float(values)] if isinstance(values, (int, float)) else list(values or [])) or [0.0]
 if not -len(times) <= args.step < len(times):
     fail(f"step {args.step} is out of range: {xdmf} has {len(times)} steps "
          f"(0 to {len(times) - 1}, or -1 for the last)")

@@ -1,4 +1,5 @@
 #include "checkpoint.h"
+#include "field_series.h"
 #include "parameters.h"
 #include "petsc_utils.h"
 #include "problem.h"
@@ -274,11 +275,8 @@ void Checkpoints::write(NonlinearSystem& system, const PathState& state,
                                    {"unknowns", total},
                                    {"path", path_to_json(state)},
                                    {"run", record}};
-  {
-    std::ofstream out(folder / "state.json.tmp");
-    out << contents.dump(1) << "\n";
-  }
-  fs::rename(folder / "state.json.tmp", folder / "state.json");
+  replace_file(folder / "state.json",
+               [&](std::ostream& out) { out << contents.dump(1) << "\n"; });
 
   // 3. Keep this one and the newest complete one before it
   const int previous = step_of(newest(_folder, state.step));

@@ -630,7 +630,10 @@ DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observe
   }
   callback_error = nullptr;
   _too_small_step = 0;
+  // Errors of the callbacks are rethrown below; PETSc must not print its trace for them
+  GELX_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
   const PetscErrorCode ierr = TSSolve(_ts, x.get());
+  GELX_PETSC(PetscPopErrorHandler());
   _observers = nullptr;
   if (callback_error)
     std::rethrow_exception(callback_error);

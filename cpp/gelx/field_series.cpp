@@ -1,7 +1,9 @@
 #include "field_series.h"
 #include "timing.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/common/MPI.h>
 #include <dolfinx/fem/DofMap.h>
@@ -155,16 +157,34 @@ void FieldSeries::write(double t,
 
 void FieldSeries::write_index() const
 {
-  const fs::path index = _folder / "fields.xdmf", aside = _folder / "fields.xdmf.tmp";
+  replace_file(_folder / "fields.xdmf",
+               [&](std::ostream& out)
+               {
+                 out << "<?xml version=\"1.0\"?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
+                     << "<Grid Name=\"fields\" GridType=\"Collection\" "
+                        "CollectionType=\"Temporal\">\n";
+                 for (const auto& grid : _grids)
+                   out << grid << "\n";
+                 out << "</Grid>\n</Domain>\n</Xdmf>\n";
+               });
+}
+
+void replace_file(const std::filesystem::path& path,
+                  const std::function<void(std::ostream&)>& write, std::ios::openmode mode)
+{
+  const auto aside = path.string() + ".tmp";
+  errno = 0;
+  std::ofstream out(aside, mode);
+  write(out);
+  out.close();
+  if (!out)
   {
-    std::ofstream out(aside);
-    out << "<?xml version=\"1.0\"?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
-        << "<Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    for (const auto& grid : _grids)
-      out << grid << "\n";
-    out << "</Grid>\n</Domain>\n</Xdmf>\n";
+    const std::string reason = errno != 0 ? std::strerror(errno) : "write failed";
+    std::error_code ignored;
+    fs::remove(aside, ignored);
+    throw std::runtime_error("cannot write " + path.string() + ": " + reason);
   }
-  fs::rename(aside, index);
+  fs::rename(aside, path);
 }
 
 } // namespace gelx

@@ -5,13 +5,24 @@
 #include <dolfinx/fem/Function.h>
 #include <dolfinx/mesh/Mesh.h>
 #include <filesystem>
+#include <functional>
+#include <ios>
 #include <memory>
+#include <ostream>
 #include <mpi.h>
 #include <string>
 #include <vector>
 
 namespace gelx
 {
+
+/// Replace `path` by what `write` writes: written aside, then renamed (atomic on POSIX file
+/// systems), so that a reader, or a run killed meanwhile, never leaves half a file. A write
+/// that fails (a full disk) leaves `path` as it was, removes the partial copy and throws
+/// std::runtime_error naming the file and the system's reason.
+void replace_file(const std::filesystem::path& path,
+                  const std::function<void(std::ostream&)>& write,
+                  std::ios::openmode mode = std::ios::out);
 
 /// A time series of fields on one mesh: `fields.xdmf` indexes one grid per step that holds every
 /// field written at that step, so ParaView opens one dataset with all its arrays and a time

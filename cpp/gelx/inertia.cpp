@@ -746,13 +746,11 @@ DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& obser
       _initial_acceleration = consistent_acceleration(v.get());
   }
   _skip_first_monitor = true;
-  // An explicit run that blows up (a step above the stable one) ends in a ConvergenceError of
-  // a callback: one line, not PETSc's trace of every frame it passed through
-  if (_explicit)
-    GELX_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  // Errors of the callbacks (an explicit run that blows up, a step budget spent in a monitor)
+  // are rethrown below: one line, not PETSc's trace of every frame they passed through
+  GELX_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
   const PetscErrorCode ierr = TSSolve(_ts, u.get());
-  if (_explicit)
-    GELX_PETSC(PetscPopErrorHandler());
+  GELX_PETSC(PetscPopErrorHandler());
   _observers = nullptr;
   _resuming = false;
   if (callback_error)

@@ -17,8 +17,10 @@
 #include <functional>
 #include <gmsh.h>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <numeric>
+#include <unistd.h>
 #include <xtensor/xview.hpp>
 
 namespace gelx
@@ -85,20 +87,103 @@ void read_physical_elements(int dim, const std::map<std::size_t, std::int64_t>& 
   }
 }
 
+/// The fewest bytes a cell costs a run: P1 tetrahedra have ~0.2 nodes a cell, so 0.6
+/// unknowns, and the leanest solver set (`amg`) took 6 kB an unknown at 1e6 unknowns
+/// (README: the block's solver table): 3 kB. A bound from below, for refusing absurd meshes.
+constexpr double min_bytes_per_cell = 3e3;
+
+/// The memory of the machines `comm` runs on: this machine's times the number of machines
+/// (ranks that share memory count once).
+double memory_of_machines(MPI_Comm comm)
+{
+  MPI_Comm shared;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &shared);
+  int shared_rank = 0;
+  MPI_Comm_rank(shared, &shared_rank);
+  MPI_Comm_free(&shared);
+  int machines = shared_rank == 0 ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &machines, 1, MPI_INT, MPI_SUM, comm);
+  const double memory = static_cast<double>(sysconf(_SC_PHYS_PAGES))
+                        * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  return memory * machines;
+}
+
+/// Refuse a mesh of at least `cells` cells that cannot fit in `memory` bytes (InputError),
+/// before it is made: a mesh size far too small otherwise meshes until the machine gives out.
+void require_fits(double cells, double memory, const std::string& why)
+{
+  if (cells * min_bytes_per_cell <= memory)
+    return;
+  char text[256];
+  std::snprintf(text, sizeof(text),
+                "the mesh would have at least %.2g cells (%s), which need at least %.3g GiB: "
+                "more than the %.3g GiB of memory this run has",
+                cells, why.c_str(), cells * min_bytes_per_cell / std::pow(2.0, 30),
+                memory / std::pow(2.0, 30));
+  throw InputError(text);
+}
+
+/// The fewest tetrahedra of the model gmsh has (before meshing) when its elements may be no
+/// larger than Mesh.MeshSizeMax (times Mesh.MeshSizeFactor), and how, for require_fits; 0
+/// when no size bounds them (a transfinite mesh's size is its scene's parameter) or the volume
+/// is not known (only OpenCASCADE's solids have one before meshing)
+std::pair<double, std::string> fewest_cells_of_model()
+{
+  double size_max = 0, factor = 1;
+  gmsh::option::getNumber("Mesh.MeshSizeMax", size_max);
+  gmsh::option::getNumber("Mesh.MeshSizeFactor", factor);
+  const double h = size_max * factor;
+  gmsh::vectorpair volumes;
+  gmsh::model::getEntities(volumes, 3);
+  double volume = 0;
+  try
+  {
+    for (const auto& [dim, tag] : volumes)
+    {
+      double mass = 0;
+      gmsh::model::occ::getMass(dim, tag, mass);
+      volume += mass;
+    }
+  }
+  catch (const std::string&) // a volume of gmsh's own kernel
+  {
+    return {0.0, ""};
+  }
+  if (!(h > 0) || h > 1e20 || !(volume > 0))
+    return {0.0, ""};
+  // a tetrahedron whose edges are at most h holds at most h^3 / (6 sqrt 2): V / h^3 is 8.5
+  // times fewer cells than that bound
+  char why[128];
+  std::snprintf(why, sizeof(why), "mesh size %.3g in a volume of %.3g", h, volume);
+  return {volume / (h * h * h), why};
+}
+
+/// gmsh's error (its API throws the message as a std::string) as one line
+std::string gmsh_error(const std::string& message)
+{
+  std::string line = message;
+  std::replace(line.begin(), line.end(), '\n', ' ');
+  return "gmsh: " + line;
+}
+
 /// Start gmsh (with `args` as its command line), let `build` create the model, mesh it in 3-D
-/// and read it.
-GmshData mesh_with_gmsh(std::vector<std::string> args, const std::function<void()>& build)
+/// and read it; a model whose mesh cannot fit in `memory` bytes is refused before meshing.
+/// gmsh prints nothing: its errors come back in the exceptions (InputError).
+GmshData mesh_with_gmsh(std::vector<std::string> args, const std::function<void()>& build,
+                        double memory)
 {
   args.insert(args.begin(), "gelx");
   std::vector<char*> argv;
   for (auto& a : args)
     argv.push_back(a.data());
   gmsh::initialize(static_cast<int>(argv.size()), argv.data(), false);
-  gmsh::option::setNumber("General.Verbosity", 2);
+  gmsh::option::setNumber("General.Verbosity", 0);
   GmshData data;
   try
   {
     build();
+    const auto [cells, why] = fewest_cells_of_model();
+    require_fits(cells, memory, why);
     gmsh::model::mesh::generate(3);
 
     std::vector<std::size_t> node_tags;
@@ -116,6 +201,11 @@ GmshData mesh_with_gmsh(std::vector<std::string> args, const std::function<void(
                            data.names);
     if (data.cells.empty())
       throw std::runtime_error("the gmsh model defines no physical volume");
+  }
+  catch (const std::string& message)
+  {
+    gmsh::finalize();
+    throw InputError(gmsh_error(message));
   }
   catch (...)
   {
@@ -199,6 +289,8 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
 {
   if (!std::filesystem::is_regular_file(geo_file))
     throw InputError("mesh file '" + geo_file + "' not found");
+  try
+  {
   std::vector<std::string> args;
   for (auto& [name, value] : numbers)
   {
@@ -207,7 +299,12 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
     text << std::setprecision(17) << value;
     args.insert(args.end(), {"-setnumber", name, text.str()});
   }
-  return mesh_gmsh_model(comm, [&]() { gmsh::open(geo_file); }, args, mirror_axes);
+    return mesh_gmsh_model(comm, [&]() { gmsh::open(geo_file); }, args, mirror_axes);
+  }
+  catch (const InputError& e) // on every rank (mesh_gmsh_model)
+  {
+    throw InputError("mesh file '" + geo_file + "': " + e.what());
+  }
 }
 
 TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
@@ -216,13 +313,33 @@ TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
 {
   TimedStage timing("mesh");
   const int rank = dolfinx::MPI::rank(comm);
+  const double memory = memory_of_machines(comm);
   GmshData data;
+  // gmsh runs on rank 0: its failure reaches every rank as the same InputError
+  std::string failure;
   if (rank == 0)
   {
-    data = mesh_with_gmsh(gmsh_args, build);
-    for (int axis : mirror_axes)
-      mirror(data, axis);
+    try
+    {
+      data = mesh_with_gmsh(gmsh_args, build, memory);
+      for (int axis : mirror_axes)
+        mirror(data, axis);
+    }
+    catch (const InputError& e)
+    {
+      failure = e.what();
+    }
+    catch (const std::exception& e) // the physical groups (read_physical_elements)
+    {
+      failure = e.what();
+    }
   }
+  int failure_size = static_cast<int>(failure.size());
+  MPI_Bcast(&failure_size, 1, MPI_INT, 0, comm);
+  failure.resize(failure_size);
+  MPI_Bcast(failure.data(), failure_size, MPI_CHAR, 0, comm);
+  if (!failure.empty())
+    throw InputError(failure);
 
   // Rank 0 tells the others the cell type and the group names
   int type_code = data.cell_type_code;
@@ -286,10 +403,47 @@ TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
   return result;
 }
 
+std::array<std::array<double, 3>, 2> bounding_box(const dolfinx::mesh::Mesh& mesh)
+{
+  std::array<double, 3> lower, upper;
+  lower.fill(std::numeric_limits<double>::infinity());
+  upper.fill(-std::numeric_limits<double>::infinity());
+  const std::span<const double> x = mesh.geometry().x(); // 3 per node, owned and ghost
+  for (std::size_t i = 0; i < x.size(); i += 3)
+    for (int k = 0; k < 3; ++k)
+    {
+      lower[k] = std::min(lower[k], x[i + k]);
+      upper[k] = std::max(upper[k], x[i + k]);
+    }
+  MPI_Allreduce(MPI_IN_PLACE, lower.data(), 3, MPI_DOUBLE, MPI_MIN, mesh.comm());
+  MPI_Allreduce(MPI_IN_PLACE, upper.data(), 3, MPI_DOUBLE, MPI_MAX, mesh.comm());
+  return {lower, upper};
+}
+
+void require_span(const std::array<std::array<double, 3>, 2>& box, int axis, double lower,
+                  double upper, const std::string& parameter)
+{
+  const double tol = 1e-9 * std::max(upper - lower, box[1][axis] - box[0][axis]);
+  if (std::abs(box[0][axis] - lower) <= tol && std::abs(box[1][axis] - upper) <= tol)
+    return;
+  char text[256];
+  std::snprintf(text, sizeof(text),
+                "the mesh spans %c from %.6g to %.6g, but %s makes it %.6g to %.6g (the mesh "
+                "must take the scene's dimensions, or the parameter the mesh's)",
+                "xyz"[axis], box[0][axis], box[1][axis], parameter.c_str(), lower, upper);
+  throw InputError(text);
+}
+
 TaggedMesh box_mesh(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n,
                     dolfinx::mesh::CellType cell)
 {
   TimedStage timing("mesh");
+  const double tetrahedra_a_box = cell == dolfinx::mesh::CellType::tetrahedron ? 6 : 1;
+  require_fits(tetrahedra_a_box * static_cast<double>(n[0]) * static_cast<double>(n[1])
+                   * static_cast<double>(n[2]),
+               memory_of_machines(comm), "a box of " + std::to_string(n[0]) + " x "
+                                             + std::to_string(n[1]) + " x "
+                                             + std::to_string(n[2]) + " cells");
   auto mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_box(
       comm, {{{0, 0, 0}, {L[0], L[1], L[2]}}}, n, cell, dolfinx::mesh::GhostMode::shared_facet));
   const int fdim = 2;

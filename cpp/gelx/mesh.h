@@ -52,6 +52,15 @@ TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
                            const std::vector<std::string>& gmsh_args = {},
                            const std::vector<int>& mirror_axes = {});
 
+/// The smallest box that holds the mesh: {lower corner, upper corner}. Collective.
+std::array<std::array<double, 3>, 2> bounding_box(const dolfinx::mesh::Mesh& mesh);
+
+/// Refuse a mesh that does not span [lower, upper] along `axis` (to 1e-9 of the span) with an
+/// InputError that says what `parameter` should be: a scene whose conditions use its geometry
+/// parameters cannot take a mesh of other dimensions (a .geo file that ignores them).
+void require_span(const std::array<std::array<double, 3>, 2>& box, int axis, double lower,
+                  double upper, const std::string& parameter);
+
 /// Box [0, L0] x [0, L1] x [0, L2] with n cells along each edge (tetrahedra: six a box cell)
 /// and its faces tagged x_min = 1, x_max = 2, y_min = 3, y_max = 4, z_min = 5, z_max = 6
 /// (`names` holds them): for prismatic scenes (columns, blocks) and verification tests.

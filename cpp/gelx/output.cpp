@@ -164,19 +164,6 @@ const std::filesystem::path& prepare_folder(MPI_Comm comm, const std::filesystem
   return folder;
 }
 
-/// Replace `path` by what `write` writes: written aside, then renamed (atomic on POSIX file
-/// systems), so that a reader, or a run killed meanwhile, never leaves half a file.
-void replace_file(const std::filesystem::path& path,
-                  const std::function<void(std::ostream&)>& write,
-                  std::ios::openmode mode = std::ios::out)
-{
-  const auto aside = path.string() + ".tmp";
-  {
-    std::ofstream out(aside, mode);
-    write(out);
-  }
-  std::filesystem::rename(aside, path);
-}
 /// Binary STL: an 80-byte header, the triangle count, then per triangle a normal, three
 /// vertices (float32) and two attribute bytes.
 void write_binary_stl(std::ostream& out, const std::vector<Triangle>& triangles)

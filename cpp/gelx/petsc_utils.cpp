@@ -1,8 +1,11 @@
 #include "petsc_utils.h"
 #include "parameters.h"
 
+#include <algorithm>
+#include <cctype>
 #include <map>
 #include <set>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -50,6 +53,96 @@ void set_default_options(const std::string& prefix,
 }
 
 bool is_default_option(const std::string& option) { return defaults_set().count(option) > 0; }
+
+namespace
+{
+/// The names (without the dash) of the options no object read, but the defaults
+std::vector<std::string> unread_option_names()
+{
+  PetscInt n = 0;
+  char **names = nullptr, **values = nullptr;
+  PetscOptionsLeftGet(nullptr, &n, &names, &values);
+  std::vector<std::string> unread;
+  for (PetscInt i = 0; i < n; ++i)
+    if (!is_default_option(names[i]))
+      unread.push_back(names[i]);
+  PetscOptionsLeftRestore(nullptr, &n, &names, &values);
+  return unread;
+}
+
+std::string dashed_list(const std::vector<std::string>& names)
+{
+  std::string list;
+  for (const auto& name : names)
+    list += (list.empty() ? "-" : ", -") + name;
+  return list;
+}
+
+/// Where the object-class part of an option name can start: "snes_" in "newton_snes_rtol"
+const std::vector<std::string> solver_classes
+    = {"snes_", "ksp_", "pc_", "mat_", "ts_", "eps_", "st_", "tao_"};
+
+/// The prefixes (with their trailing '_', or "") of the solver objects that read an option:
+/// for each option read, each prefix that a solver class follows in its name
+std::set<std::string> prefixes_of_read_options()
+{
+  char* all = nullptr;
+  PetscOptionsGetAll(nullptr, &all);
+  std::istringstream words(all ? all : "");
+  PetscFree(all);
+  std::set<std::string> prefixes;
+  std::string word;
+  while (words >> word)
+  {
+    if (word.size() < 2 || word[0] != '-' || std::isdigit(word[1]) || word[1] == '.')
+      continue; // a value
+    const std::string name = word.substr(1);
+    PetscBool used = PETSC_FALSE;
+    PetscOptionsUsed(nullptr, name.c_str(), &used); // the name without its dash
+    if (!used)
+      continue;
+    for (std::size_t at = 0;;) // at the start and after each '_'
+    {
+      for (const auto& cls : solver_classes)
+        if (name.compare(at, cls.size(), cls) == 0)
+          prefixes.insert(name.substr(0, at));
+      const std::size_t next = name.find('_', at);
+      if (next == std::string::npos)
+        break;
+      at = next + 1;
+    }
+  }
+  return prefixes;
+}
+} // namespace
+
+std::string unused_options() { return dashed_list(unread_option_names()); }
+
+std::string unread_options_of_set_up_solvers()
+{
+  const std::vector<std::string> unread = unread_option_names();
+  if (unread.empty())
+    return "";
+  const std::set<std::string> prefixes = prefixes_of_read_options();
+  std::vector<std::string> misspelt;
+  for (const auto& name : unread)
+  {
+    // PETSc reads these at the end of a solve (a TS's or an EPS's: after the step's line)
+    if (name.find("view") != std::string::npos
+        || name.find("converged_reason") != std::string::npos)
+      continue;
+    for (const auto& prefix : prefixes)
+      if (name.compare(0, prefix.size(), prefix) == 0
+          && std::any_of(solver_classes.begin(), solver_classes.end(),
+                         [&](const std::string& cls)
+                         { return name.compare(prefix.size(), cls.size(), cls) == 0; }))
+      {
+        misspelt.push_back(name);
+        break;
+      }
+  }
+  return dashed_list(misspelt);
+}
 
 void set_linear_solver_defaults(const std::string& prefix)
 {

@@ -49,6 +49,18 @@ void set_default_options(const std::string& prefix,
 /// user's other choices may leave unread (MUMPS for an iterative solve) is no mistake.
 bool is_default_option(const std::string& option);
 
+/// The options no solver object read (a mistyped or misplaced option) but the defaults, as
+/// "-a, -b"; "" when none. At the end of a run: every object has had its chance.
+std::string unused_options();
+/// The same, during a run, for the options of the solver objects that have read theirs: an
+/// unread `-PREFIX_CLASS_...` (CLASS one of snes, ksp, pc, mat, ts, eps, st, tao) where some
+/// other `-PREFIX_CLASS_...` option was read. An object reads its options when it is set up
+/// and in its first solve (MUMPS' at the first factorisation), so after a completed step an
+/// unread one under its prefix is misspelt (`-newton_snes_rtoll`); the options of objects not
+/// made yet, and the views and converged reasons PETSc reads at the end of a solve, wait for
+/// unused_options().
+std::string unread_options_of_set_up_solvers();
+
 /// The defaults of the linear solver with options `prefix`, from the named option set
 /// `-<prefix>linear_solver` (each option of a set is a default: any one can be overridden):
 /// - `direct` (the default): MUMPS LU. Robust, and fastest up to a few 10^4 unknowns; its time

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <dolfinx/common/MPI.h>
 #include <dolfinx/common/log.h>
+#include <hdf5.h>
 #include <iostream>
 #include <petscsys.h>
 #include <slepcsys.h>
@@ -38,18 +39,33 @@ nlohmann::json petsc_options()
   return options;
 }
 
-/// The options no solver object read (a mistyped or misplaced option), "" when none.
-std::string unused_options()
+/// What failed in HDF5's last error, as " (REASON writing FILE)", from the innermost entry of
+/// its error stack that names them (a full disk: "No space left on device"); "" when none.
+/// dolfinx's own message says only which HDF5 call failed ("Failed to close HDF5 dataset.").
+std::string hdf5_failure()
 {
-  PetscInt n = 0;
-  char **names = nullptr, **values = nullptr;
-  PetscOptionsLeftGet(nullptr, &n, &names, &values);
-  std::string list;
-  for (PetscInt i = 0; i < n; ++i)
-    if (!is_default_option(names[i]))
-      list += (list.empty() ? "-" : ", -") + std::string(names[i]);
-  PetscOptionsLeftRestore(nullptr, &n, &names, &values);
-  return list;
+  std::string found;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned, const H5E_error2_t* entry, void* data) -> herr_t
+      {
+        const std::string desc = entry->desc ? entry->desc : "";
+        auto quoted = [&](const std::string& key)
+        {
+          const auto at = desc.find(key + " = '");
+          if (at == std::string::npos)
+            return std::string();
+          const auto start = at + key.size() + 4;
+          return desc.substr(start, desc.find('\'', start) - start);
+        };
+        const std::string reason = quoted("error message"), file = quoted("filename");
+        auto& text = *static_cast<std::string*>(data);
+        if (text.empty() && !reason.empty())
+          text = " (" + reason + (file.empty() ? "" : " writing " + file) + ")";
+        return 0;
+      },
+      &found);
+  return found;
 }
 
 /// The parameters that belong to the run, not to the scene: a restart may set them.
@@ -210,6 +226,21 @@ void Run::finish(const std::string& status)
   _results->write_summary(_scene, status, _parameters, record);
 }
 
+void Run::finish_alone(const std::string& status) noexcept
+{
+  if (!_results)
+    return;
+  try
+  {
+    nlohmann::json record = summary;
+    record["wall_time"] = elapsed();
+    _results->write_summary(_scene, status, _parameters, record);
+  }
+  catch (...)
+  {
+  }
+}
+
 int run_program(int argc, char* argv[], const std::string& name, Parameters& parameters,
                 const std::function<void(Run&)>& body)
 {
@@ -247,6 +278,8 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
   petsc_argv.push_back(nullptr); // MPI reads argv up to a null entry
   char** petsc_args = petsc_argv.data();
   SlepcInitialize(&petsc_argc, &petsc_args, nullptr, nullptr);
+  // HDF5 prints its whole error stack by default; the one line of the error is ours
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   start_timing();
   // dolfinx logs at INFO level by default; warnings and errors are what a user needs
   loguru::g_stderr_verbosity = loguru::Verbosity_WARNING;
@@ -304,7 +337,9 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
     }
     catch (const std::exception& e) // possibly on one rank only: stop them all
     {
-      std::cerr << name << ": error: " << e.what() << std::endl;
+      const std::string what = e.what() + hdf5_failure();
+      std::cerr << name << ": error: " << what << std::endl;
+      run.finish_alone("failed: " + what);
       MPI_Abort(PETSC_COMM_WORLD, 1);
     }
   }

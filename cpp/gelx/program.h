@@ -65,6 +65,9 @@ public:
   /// Write summary.json with `status` ("completed" or "failed: why"), if the run made its
   /// results folder. Collective.
   void finish(const std::string& status);
+  /// The same without communicating, from what this rank holds (rank 0 writes), for an error
+  /// that may have struck one rank alone; a write that fails too (a full disk) is given up.
+  void finish_alone(const std::string& status) noexcept;
 
 private:
   /// A new run removes the checkpoints of an earlier run in its folder (once)
@@ -90,7 +93,8 @@ private:
 /// checkpoint (the command line may not change them; PETSc options it may) and the output
 /// folder is DIR (see Run). Starts PETSc and SLEPc with what remains (the options database),
 /// echoes the parameters, and runs `body`, then writes the run record. A PETSc option that no solver object read ends
-/// the run like an unknown scene parameter. Every error ends as one line `NAME: error: ...` on
+/// the run like an unknown scene parameter: at the first step after its solver has run (a
+/// misspelt option of that solver), or at the end. Every error ends as one line `NAME: error: ...` on
 /// stderr and exit code 1; `--help` prints the parameter table and exits 0. Input errors are
 /// found on every rank before any collective call, so no rank is left waiting.
 int run_program(int argc, char* argv[], const std::string& name, Parameters& parameters,

@@ -1,4 +1,6 @@
 #include "progress.h"
+#include "parameters.h"
+#include "petsc_utils.h"
 
 #include <cmath>
 #include <cstdio>
@@ -74,6 +76,10 @@ void ProgressLine::print_line(const StepRecord& record, double load, double frac
 
 void ProgressLine::count_step()
 {
+  // A misspelt option of a solver that has run ends the run here, not after its last step
+  if (const std::string misspelt = unread_options_of_set_up_solvers(); !misspelt.empty())
+    throw InputError("no solver object read the option(s) " + misspelt
+                     + " (misspelt? the solver of that prefix has read its options)");
   if (step_budget > 0 && ++steps_taken >= step_budget)
     throw StepBudgetSpent("stopped after " + std::to_string(steps_taken)
                           + " steps (--stop_after_steps)");

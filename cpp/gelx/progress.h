@@ -52,7 +52,8 @@ private:
   /// The line itself (rank 0)
   void print_line(const StepRecord& record, double load, double fraction,
                   const std::string& quantity, std::chrono::steady_clock::time_point now) const;
-  /// Count the step against set_step_budget's budget
+  /// Count the step against set_step_budget's budget; refuse the options the solvers that
+  /// took it left unread (unread_options_of_set_up_solvers: InputError)
   static void count_step();
 
   Options _options;

@@ -85,6 +85,11 @@ int main(int argc, char* argv[])
     // 2. Mesh from the gmsh geometry, with the physical groups "bottom" and "top"
     const gelx::TaggedMesh geo
         = gelx::read_geo(run.comm(), b.mesh, {{"W", b.width}, {"H", b.height}, {"h", b.h}});
+    // the conditions below stretch by the height and twist about the axis x = y = 0
+    const auto box = gelx::bounding_box(*geo.mesh);
+    gelx::require_span(box, 0, -b.width / 2, b.width / 2, "--width");
+    gelx::require_span(box, 1, -b.width / 2, b.width / 2, "--width");
+    gelx::require_span(box, 2, 0, b.height, "--height");
 
     // 3. Displacement space, material constants, residual and tangent (forms/block.py)
     const BlockForms& kernels = b.degree == 1 ? block_p1 : block_p2;

@@ -25,7 +25,6 @@
 #include "pyramid.h"
 
 #include <cstdio>
-#include <fstream>
 #include <gelx/load_stepping.h>
 #include <gelx/petsc_utils.h>
 #include <gelx/problem.h>
@@ -259,10 +258,13 @@ int main(int argc, char* argv[])
     const auto patch = pyramid.patch(); // collective; the nodes are on rank 0
     if (dolfinx::MPI::rank(run.comm()) == 0)
     {
-      std::ofstream out(results.folder() / "patch.csv");
-      out << "x,y,force,in_contact\n";
-      for (const auto& [x, y, f, in_contact] : patch)
-        out << x << "," << y << "," << f << "," << in_contact << "\n";
+      gelx::replace_file(results.folder() / "patch.csv",
+                         [&](std::ostream& out)
+                         {
+                           out << "x,y,force,in_contact\n";
+                           for (const auto& [x, y, f, in_contact] : patch)
+                             out << x << "," << y << "," << f << "," << in_contact << "\n";
+                         });
     }
 
     // 5. The slope's discretisation error: the level set's corner is resolved to a fraction of

@@ -26,11 +26,15 @@ lc_gap_law = np.array([float(r["contact_width_over_L_gap_law"]) for r in rows])
 left.plot(d, lc, "o", ms=4, label="gelx, corner by the level set")
 limit = s.get("slope_lc_vs_d_extrapolated")
 limit_text = (f" (mesh limit {limit:.3f})" if limit is not None and np.isfinite(limit) else "")
-left.plot(d, s["slope_lc_vs_d"] * d + s["intercept_lc_vs_d"], "k-",
-          label=f"fit: slope {s['slope_lc_vs_d']:.3f}{limit_text}, R² {s['r2_lc_vs_d']:.4f}")
+# The fits need the contact to have grown over a few steps: a short or stopped run has none
+if "slope_lc_vs_d" in s:
+    left.plot(d, s["slope_lc_vs_d"] * d + s["intercept_lc_vs_d"], "k-",
+              label=f"fit: slope {s['slope_lc_vs_d']:.3f}{limit_text}, "
+                    f"R² {s['r2_lc_vs_d']:.4f}")
 left.plot(d, lc_gap_law, "s", ms=4, mfc="none", label="gelx, corner by the gap's 3/2 law")
-left.plot(d, s["slope_lc_vs_d_gap_law"] * d + s["intercept_lc_vs_d_gap_law"], "b-",
-          label=f"fit: slope {s['slope_lc_vs_d_gap_law']:.3f}")
+if "slope_lc_vs_d_gap_law" in s:
+    left.plot(d, s["slope_lc_vs_d_gap_law"] * d + s["intercept_lc_vs_d_gap_law"], "b-",
+              label=f"fit: slope {s['slope_lc_vs_d_gap_law']:.3f}")
 left.plot(d, 0.86 * d, "r--", label="thesis fit, slope 0.86")
 left.plot(d, d, ":", color="gray", label="truncated pyramid, slope 1")
 left.set_xlabel("d / H")
@@ -44,13 +48,16 @@ for G_other in (0.25, 0.5, 1.0, 2.0, 3.0):
     right.plot(np.sqrt(f * G_other / G), lc, "o-", ms=3, label=f"G = {G_other:g} MPa")
 right.set_xlabel("f^(1/2) (uN^(1/2))")
 right.set_ylabel("l_c / L")
-right.set_title(f"l_c against f^(1/2) (Fig. 2.4a), R² = {s['r2_lc_vs_sqrtf']:.4f}")
+fit = f", R² = {s['r2_lc_vs_sqrtf']:.4f}" if "r2_lc_vs_sqrtf" in s else ""
+right.set_title(f"l_c against f^(1/2) (Fig. 2.4a){fit}")
 right.legend(fontsize=8)
 right.grid(alpha=0.3)
 fig.tight_layout()
 fig.savefig(out / "pyramid.png", dpi=120)
 
-patch = np.loadtxt(out / "patch.csv", delimiter=",", skiprows=1, ndmin=2)
+patch_file = out / "patch.csv"  # written at the end of the path: a stopped run has none
+patch = (np.loadtxt(patch_file, delimiter=",", skiprows=1, ndmin=2) if patch_file.is_file()
+         else np.zeros((0, 4)))
 if len(patch) >= 3:
     # Contact pressure: each node's force over its tributary area, a third of the area of the
     # triangles around it in a triangulation of the candidate nodes (current x, y); the patch's
@@ -79,4 +86,7 @@ if len(patch) >= 3:
                  f"A_c / l_c² = {s['area_ratio']:.3f}", fontsize=9)
     fig.tight_layout()
     fig.savefig(out / "patch.png", dpi=120)
-print(f"wrote {out / 'pyramid.png'} and {out / 'patch.png'}")
+    print(f"wrote {out / 'pyramid.png'} and {out / 'patch.png'}")
+else:
+    print(f"wrote {out / 'pyramid.png'} (no contact patch: fewer than 3 nodes in contact, "
+          f"or the run stopped before its end)")

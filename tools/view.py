@@ -1,52 +1,68 @@
 """pvbatch script: render a run's fields to PNG, the body deformed by its displacement and
-coloured by one field, with a colour bar and the step's time. `./gelx view` runs it under a
-virtual display (Debian's ParaView renders only on an X display).
-
-usage: pvbatch view.py RESULTS [--defaults JSON] [--file XDMF] [--field NAME] [--step K]
-                       [--png PATH] [--reflect PLANE ...] [--focus X Y Z] [--extent E]
-                       [--direction X Y Z] [--up X Y Z] [--size W H]
-  RESULTS     a run's results folder
-  --defaults  a scene's picture (demos/SCENE/view.json): defaults for the options below, by
-              their names
-  --file      the field series in RESULTS (default fields.xdmf)
-  --field     a point or cell array (default: a von Mises stress, else the first cell array,
-              else the displacement)
-  --step      index of the time step, negative from the end (default -1, the last)
-  --png       the picture (default RESULTS/FIELD_stepK.png)
-  --reflect   mirror the modelled part into the whole body (ParaView's Reflect planes:
-              'X Min', 'Y Min', ...), in order
-  --focus, --extent   the camera looks at X Y Z (reference configuration) and shows 2 E of
-              height (default: the whole body)
-  --direction, --up   the direction the camera looks along, and its up vector (default
-              (-1, 1, -0.7), from the front right and above; +z up)
-  --size      the picture's width and height in pixels (default 1200 900)
+coloured by one field, with a colour bar and the step's time. `./gelx view` runs it on a
+virtual display (Debian's ParaView renders only on an X display); `--help` (under any
+python3: ParaView is imported after it) lists the options and the fields of RESULTS.
 Bad input (no results, an unknown field, a step out of range) ends in one line and exit code 1.
 """
 import argparse
 import json
 import pathlib
 import sys
+import xml.etree.ElementTree as ET
 
-from paraview import simple
-
-cli = argparse.ArgumentParser()
-cli.add_argument("results", type=pathlib.Path)
-cli.add_argument("--defaults", type=pathlib.Path)
-cli.add_argument("--file", default="fields.xdmf")
-cli.add_argument("--field")
-cli.add_argument("--step", type=int, default=-1)
-cli.add_argument("--png", type=pathlib.Path)
-cli.add_argument("--reflect", nargs="*", default=[])
-cli.add_argument("--focus", type=float, nargs=3)
-cli.add_argument("--extent", type=float)
-cli.add_argument("--direction", type=float, nargs=3, default=[-1, 1, -0.7])
-cli.add_argument("--up", type=float, nargs=3, default=[0, 0, 1])
-cli.add_argument("--size", type=int, nargs=2, default=[1200, 900])
+cli = argparse.ArgumentParser(
+    prog="./gelx view [SCENE]", add_help=False,
+    description="A picture (PNG) of a run's results: the body deformed by its displacement, "
+                "coloured by one field at one step. `./gelx view SCENE` reads results/SCENE "
+                "with the scene's choices (demos/SCENE/view.json).")
+cli.add_argument("results", type=pathlib.Path, help="a run's results folder (./gelx view: "
+                 "--output DIR, default results/SCENE)")
+cli.add_argument("-h", "--help", action="store_true", help="this help, and the fields of "
+                 "RESULTS")
+cli.add_argument("--defaults", type=pathlib.Path, help="a scene's picture "
+                 "(demos/SCENE/view.json): defaults for the options below, by their names")
+cli.add_argument("--file", default="fields.xdmf", help="the field series in RESULTS "
+                 "(default fields.xdmf)")
+cli.add_argument("--field", help="a point or cell array (default: a von Mises stress, else "
+                 "the first cell array, else the displacement)")
+cli.add_argument("--step", type=int, default=-1, help="index of the output, negative from the "
+                 "end (default -1, the last)")
+cli.add_argument("--load-name", default="t", help="what the outputs' time is in the label "
+                 "(default t; a scene's view.json names its own: d/H, T, ...)")
+cli.add_argument("--png", type=pathlib.Path, help="the picture (default "
+                 "RESULTS/FIELD_stepK.png)")
+cli.add_argument("--reflect", nargs="*", default=[], metavar="PLANE", help="mirror the "
+                 "modelled part into the whole body (ParaView's Reflect planes: 'X Min', "
+                 "'Y Min', ...), in order")
+cli.add_argument("--focus", type=float, nargs=3, metavar=("X", "Y", "Z"), help="the point "
+                 "the camera looks at (reference configuration; default: the body's centre)")
+cli.add_argument("--extent", type=float, help="half the height the picture shows (default: "
+                 "the whole body)")
+cli.add_argument("--direction", type=float, nargs=3, default=[-1, 1, -0.7],
+                 metavar=("X", "Y", "Z"), help="the direction the camera looks along "
+                 "(default -1 1 -0.7: from the front right and above)")
+cli.add_argument("--up", type=float, nargs=3, default=[0, 0, 1], metavar=("X", "Y", "Z"),
+                 help="the camera's up vector (default +z)")
+cli.add_argument("--size", type=int, nargs=2, default=[1200, 900], metavar=("W", "H"),
+                 help="the picture's width and height in pixels (default 1200 900)")
 args = cli.parse_args()
 if args.defaults:
     # the scene's choices replace the defaults; the command line still overrides them
     cli.set_defaults(**json.loads(args.defaults.read_text()))
     args = cli.parse_args()
+if args.help:
+    cli.print_help()
+    series = args.results / args.file
+    try:
+        grids = ET.parse(series).getroot().find("Domain/Grid").findall("Grid")
+        names = [a.get("Name") for a in grids[-1].findall("Attribute")]
+        print(f"\nfields of {series} ({len(grids)} outputs): {', '.join(names)}")
+    except (OSError, ET.ParseError, AttributeError, IndexError):
+        print(f"\n({series}: no readable results, so no fields to list)")
+    sys.exit(0)
+
+from paraview import simple  # noqa: E402  (after --help, which needs no ParaView)
+
 xdmf = args.results / args.file
 
 
@@ -100,7 +116,9 @@ bar = simple.GetScalarBar(simple.GetColorTransferFunction(field), view)
 bar.Title = field
 bar.ComponentTitle = ""
 bar.TitleColor = bar.LabelColor = [0, 0, 0]
-label = simple.Text(Text=f"step {args.step % len(times)} of {len(times) - 1}, t = {time:.6g}")
+# outputs counted from 1, as the rows of steps.csv and the progress lines count them
+output = args.step % len(times) + 1
+label = simple.Text(Text=f"output {output} of {len(times)}, {args.load_name} = {time:.6g}")
 label_display = simple.Show(label, view)
 label_display.Color = [0, 0, 0]
 label_display.WindowLocation = "Upper Left Corner"
@@ -116,6 +134,7 @@ if args.focus:
     view.CameraFocalPoint = args.focus
 if args.extent:
     view.CameraParallelScale = args.extent
-png = args.png or args.results / f"{field}_step{args.step % len(times)}.png"
+png = args.png or args.results / f"{field}_output{output}.png"
 simple.SaveScreenshot(str(png), view, ImageResolution=args.size)
-print(f"gelx view: {png} ({field} at step {args.step % len(times)}, t = {time:.6g})")
+print(f"gelx view: {png} ({field} at output {output} of {len(times)}, "
+      f"{args.load_name} = {time:.6g})")

@@ -290,6 +290,9 @@ bool NewtonSolver::predict(NonlinearSystem& system)
   GELX_PETSC(KSPSolve(ksp, _r, p.work));
   KSPConvergedReason reason;
   GELX_PETSC(KSPGetConvergedReason(ksp, &reason));
+  PetscInt its = 0;
+  GELX_PETSC(KSPGetIterationNumber(ksp, &its));
+  r.linear_iterations = its; // the predictor's solve is one of the step's (run_snes adds SNES')
   restart_bounded_ksp();
   if (reason < 0)
     return false; // SNES meets the same failure and reports it
@@ -358,7 +361,7 @@ NewtonReport NewtonSolver::run_snes(NonlinearSystem& system)
   NewtonReport& report = _progress.report;
   PetscInt linear_iterations;
   GELX_PETSC(SNESGetLinearSolveIterations(_snes, &linear_iterations));
-  report.linear_iterations = linear_iterations;
+  report.linear_iterations += linear_iterations;
   SNESType snes_type;
   GELX_PETSC(SNESGetType(_snes, &snes_type));
   report.snes_type = snes_type;

@@ -102,15 +102,26 @@ NodalField::NodalField(const std::string& name,
 
 void NodalField::update() { _f->interpolate(*_u); }
 
+namespace
+{
+void require_field_name(const std::string& name)
+{
+  if (std::find(field_names.begin(), field_names.end(), name) == field_names.end())
+    throw std::logic_error("field name '" + name + "' is not in gelx::field_names (output.h)");
+}
+} // namespace
+
 void FieldSet::add(const std::string& name,
                    std::shared_ptr<const dolfinx::fem::Function<double>> u)
 {
+  require_field_name(name);
   _nodal.emplace_back(name, std::move(u));
 }
 
 void FieldSet::add(const std::string& name,
                    std::shared_ptr<const dolfinx::fem::Expression<double>> e)
 {
+  require_field_name(name);
   _cells.emplace_back(name, std::move(e));
 }
 
@@ -201,11 +212,19 @@ void write_csv_row(std::ostream& out, const std::vector<std::string>& columns,
   out << "\n";
 }
 
+/// A table's columns: the step and the path's coordinate first (whichever of these a row
+/// has, in this order), then the rest alphabetically (a JSON object's order)
 std::vector<std::string> keys(const nlohmann::json& row)
 {
+  static const std::vector<std::string> leading
+      = {"step", "mode", "t", "time", "T", "d_over_H", "load_factor", "end_distance"};
   std::vector<std::string> k;
+  for (const auto& name : leading)
+    if (row.contains(name))
+      k.push_back(name);
   for (auto it = row.begin(); it != row.end(); ++it)
-    k.push_back(it.key());
+    if (std::find(leading.begin(), leading.end(), it.key()) == leading.end())
+      k.push_back(it.key());
   return k;
 }
 

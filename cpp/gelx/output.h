@@ -65,8 +65,24 @@ private:
   std::shared_ptr<dolfinx::fem::Function<double>> _f;
 };
 
+/// The names of the fields gelx writes, one name a quantity in every scene's fields.xdmf,
+/// `./gelx view --field` and the READMEs (a tensor's outputs add _xx, _yy, _zz, _yz, _xz, _xy,
+/// _vm for von Mises and _p for the pressure -tr/3; tests/vocabulary.py checks every scene's
+/// output against this list):
+/// - displacement (mm, or the scene's length unit; at the nodes)
+/// - cauchy_stress (MPa, or the scene's stress unit; per cell)
+/// - energy_density (strain energy per reference volume; per cell)
+/// - contact_status (1 in contact, 0 free), contact_gap (length), contact_force (nodal force;
+///   at the candidate nodes of a contact)
+/// - mode (a buckling mode's shape, normalised; modes/*.xdmf)
+inline const std::vector<std::string> field_names
+    = {"displacement", "cauchy_stress", "energy_density", "contact_status", "contact_gap",
+       "contact_force", "mode"};
+
 /// The fields a scene writes at every step, updated and written together: displacements at
-/// the mesh nodes (NodalField), stresses and energy densities per cell (CellField).
+/// the mesh nodes (NodalField), stresses and energy densities per cell (CellField). Each
+/// name must be one of field_names (std::logic_error otherwise: a new quantity is added
+/// there, once).
 class FieldSet
 {
 public:
@@ -127,8 +143,9 @@ public:
   void write_fields(double t,
                     const std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>>& f);
 
-  /// Append one row to steps.csv (columns from the first row's keys); the file is replaced by
-  /// its new version, so it always holds whole rows.
+  /// Append one row to steps.csv (columns from the first row's keys: `step` and the path's
+  /// coordinate, t, T, d_over_H, ..., first, then the rest alphabetically); the file is
+  /// replaced by its new version, so it always holds whole rows.
   void append_step(const nlohmann::json& row);
 
   /// Write a whole table (columns from the first row's keys) to folder/file_name.

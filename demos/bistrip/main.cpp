@@ -75,7 +75,7 @@ int main(int argc, char* argv[])
                    {"prestress_energy", prestress_A + prestress_B}};
     gelx::FieldSet fields;
     fields.add("displacement", strip.displacement());
-    fields.add("stress", strip.stress());
+    fields.add("cauchy_stress", strip.stress());
     fields.add("energy_density", strip.energy_density());
 
     if (p.ends == "free")

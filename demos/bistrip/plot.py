@@ -132,7 +132,7 @@ def plot_shapes(out, normalized):
         if normalized:
             points[:, 2] *= x[:, 2].max() / t[i]
         strips.append((f"end distance {t[i] / 10:.1f} cm", points, cells,
-                       series.field("stress_vm", i).ravel()))
+                       series.field("cauchy_stress_vm", i).ravel()))
     top = max(values.max() for *_, values in strips)
     fig = stacked_strips(strips, "von Mises stress (MPa)", Normalize(0, top), plt.cm.jet)
     if normalized:

@@ -558,7 +558,7 @@ def fig3_10():
         x, cells = series.mesh(i)
         strips.append((f"({panel}) {section}: {got['shape']}, thesis {thesis}",
                        x + series.field("displacement", i), cells,
-                       series.field("stress_vm", i).ravel()))
+                       series.field("cauchy_stress_vm", i).ravel()))
     write_csv("fig3.10", rows)
     top = max(values.max() for *_, values in strips)
     save(stacked_strips(strips, "von Mises stress (MPa)", Normalize(0, top), plt.cm.jet),

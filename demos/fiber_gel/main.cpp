@@ -86,7 +86,7 @@ int main(int argc, char* argv[])
     // 3. Heat from T_i to T_f: T = T_i + s (T_f - T_i) as the load factor s goes from 0 to 1
     gelx::ResultsWriter& results = run.results(cell.mesh().mesh);
     gelx::FieldSet fields;
-    fields.add("sigma", cell.stress()); // sigma_vm: Fig. 4.8
+    fields.add("cauchy_stress", cell.stress()); // cauchy_stress_vm: Fig. 4.8
     fields.add("displacement", cell.displacement());
     fields.add("energy_density", cell.energy_density());
     gelx::NewtonSolver newton(run.comm());

@@ -34,7 +34,7 @@ left.legend(fontsize=8)
 # Cells of the 1/8 cell (or of the whole cell) that touch the plane y = 0, at their centroids
 series = FieldSeries(out)
 x, cells = series.mesh(-1)
-vm = series.field("sigma_vm", -1).ravel()
+vm = series.field("cauchy_stress_vm", -1).ravel()
 on_plane = np.abs(x[cells, 1]).min(axis=1) < 1e-9 * np.abs(x).max()
 centroids = x[cells[on_plane]].mean(axis=1)
 shown = right.tricontourf(centroids[:, 0], centroids[:, 2], vm[on_plane], levels=30)

@@ -196,7 +196,7 @@ int main(int argc, char* argv[])
     // 3. Press, writing every step's fields, STL surface and measures
     gelx::ResultsWriter& results = run.results(pyramid.mesh().mesh);
     gelx::FieldSet fields;
-    fields.add("sigma", pyramid.stress());
+    fields.add("cauchy_stress", pyramid.stress());
     fields.add("energy_density", pyramid.energy_density());
     fields.add("displacement", pyramid.displacement());
     for (const auto& f : pyramid.contact_fields())

@@ -28,8 +28,8 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <gelx/deflation.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/solvers/deflation.h>
+#include <gelx/common/petsc_utils.h>
 #include <slepcsys.h>
 
 namespace

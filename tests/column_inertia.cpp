@@ -18,8 +18,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <gelx/arclength.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/solvers/arclength.h>
+#include <gelx/common/petsc_utils.h>
 #include <slepcsys.h>
 
 int main(int argc, char* argv[])

@@ -25,13 +25,13 @@
 
 #include <fstream>
 #include <map>
-#include <gelx/boundary.h>
-#include <gelx/contact.h>
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
-#include <gelx/mesh.h>
-#include <gelx/mixed.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/systems/contact.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
+#include <gelx/io/mesh.h>
+#include <gelx/systems/mixed.h>
+#include <gelx/common/petsc_utils.h>
 #include <nlohmann/json.hpp>
 #include <slepcsys.h>
 

@@ -31,10 +31,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <gelx/dynamics.h>
-#include <gelx/newton.h>
-#include <gelx/path.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/solvers/dynamics.h>
+#include <gelx/solvers/newton.h>
+#include <gelx/solvers/path.h>
+#include <gelx/common/petsc_utils.h>
 
 namespace
 {

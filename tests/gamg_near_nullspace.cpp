@@ -15,10 +15,10 @@
 
 #include <cmath>
 #include <dolfinx/fem/utils.h>
-#include <gelx/boundary.h>
-#include <gelx/mesh.h>
-#include <gelx/petsc_utils.h>
-#include <gelx/problem.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/io/mesh.h>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/systems/problem.h>
 #include <petscksp.h>
 
 using namespace dolfinx;

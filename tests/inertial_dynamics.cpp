@@ -41,11 +41,11 @@
 #include <cstdio>
 #include <dolfinx/la/petsc.h>
 #include <dolfinx/common/MPI.h>
-#include <gelx/buckling.h>
-#include <gelx/checkpoint.h>
-#include <gelx/inertia.h>
-#include <gelx/newton.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/solvers/buckling.h>
+#include <gelx/io/checkpoint.h>
+#include <gelx/solvers/inertia.h>
+#include <gelx/solvers/newton.h>
+#include <gelx/common/petsc_utils.h>
 #include <string>
 #include <vector>
 

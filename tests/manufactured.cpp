@@ -14,9 +14,9 @@
 #include <cstdio>
 #include <map>
 #include <dolfinx/fem/utils.h>
-#include <gelx/boundary.h>
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
 #include <petscsys.h>
 
 using namespace dolfinx;

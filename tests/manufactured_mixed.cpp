@@ -27,8 +27,8 @@
 #include <cmath>
 #include <cstdio>
 #include <dolfinx/fem/utils.h>
-#include <gelx/newton.h>
-#include <gelx/problem.h>
+#include <gelx/solvers/newton.h>
+#include <gelx/systems/problem.h>
 #include <stdexcept>
 #include <string>
 #include <vector>

@@ -35,11 +35,11 @@
 #include <algorithm>
 #include <cmath>
 #include <dolfinx/fem/utils.h>
-#include <gelx/constraints.h>
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
-#include <gelx/mixed.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/systems/constraints.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
+#include <gelx/systems/mixed.h>
+#include <gelx/common/petsc_utils.h>
 #include <petscsys.h>
 #include <xtensor/xmath.hpp>
 #include <xtensor/xtensor.hpp>

@@ -26,10 +26,10 @@
 
 #include <cmath>
 #include <dolfinx/fem/utils.h>
-#include <gelx/constraints.h>
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/systems/constraints.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
+#include <gelx/common/petsc_utils.h>
 #include <petscsys.h>
 #include <xtensor/xtensor.hpp>
 

@@ -40,8 +40,8 @@
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/la/petsc.h>
 #include <functional>
-#include <gelx/boundary.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/common/petsc_utils.h>
 #include <slepceps.h>
 #include <string>
 #include <vector>

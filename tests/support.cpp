@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <dolfinx/common/MPI.h>
 #include <dolfinx/common/log.h>
-#include <gelx/mesh.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/io/mesh.h>
+#include <gelx/common/petsc_utils.h>
 #include <slepcsys.h>
 
 namespace gelx::test

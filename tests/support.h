@@ -9,8 +9,8 @@
 #include <dolfinx/mesh/cell_types.h>
 #include <dolfinx/mesh/MeshTags.h>
 #include <functional>
-#include <gelx/boundary.h>
-#include <gelx/path.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/solvers/path.h>
 #include <memory>
 #include <mpi.h>
 #include <string>

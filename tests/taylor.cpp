@@ -40,16 +40,16 @@
 
 #include <cmath>
 #include <dolfinx/fem/DofMap.h>
-#include <gelx/arclength.h>
-#include <gelx/boundary.h>
-#include <gelx/constraints.h>
-#include <gelx/contact.h>
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
-#include <gelx/mesh.h>
-#include <gelx/mixed.h>
-#include <gelx/petsc_utils.h>
-#include <gelx/prestretch.h>
+#include <gelx/solvers/arclength.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/systems/constraints.h>
+#include <gelx/systems/contact.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
+#include <gelx/io/mesh.h>
+#include <gelx/systems/mixed.h>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/systems/prestretch.h>
 
 using namespace dolfinx;
 using namespace gelx::test;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <dolfinx/common/MPI.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/common/petsc_utils.h>
 
 namespace gelx::test
 {

@@ -22,7 +22,7 @@
 #include "support.h"
 
 #include <functional>
-#include <gelx/problem.h>
+#include <gelx/systems/problem.h>
 #include <petscmat.h>
 #include <petscvec.h>
 #include <string>

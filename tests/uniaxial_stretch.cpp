@@ -12,10 +12,10 @@
 
 #include <cmath>
 #include <dolfinx/fem/utils.h>
-#include <gelx/boundary.h>
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
-#include <gelx/output.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
+#include <gelx/io/output.h>
 #include <petscsys.h>
 
 using namespace dolfinx;

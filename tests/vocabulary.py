@@ -1,5 +1,5 @@
 """One name a quantity: every array in every XDMF file of the scenes' runs (fields.xdmf,
-branch/, modes/) is a name of gelx::field_names (cpp/gelx/output.h, read here), or a tensor's
+branch/, modes/) is a name of gelx::field_names (cpp/gelx/io/output.h, read here), or a tensor's
 output of one (_xx, _yy, _zz, _yz, _xz, _xy, _vm, _p), and each run writes at least one.
 Failed before the fields were renamed: the pyramid's and the fiber gel's stress was `sigma`,
 the bistrip's `stress`.
@@ -13,7 +13,7 @@ import xml.etree.ElementTree as ET
 
 from checks import Checks
 
-header = pathlib.Path(__file__).resolve().parents[1] / "cpp" / "gelx" / "output.h"
+header = pathlib.Path(__file__).resolve().parents[1] / "cpp" / "gelx" / "io" / "output.h"
 listed = re.search(r"field_names\s*=\s*\{([^}]*)\}", header.read_text())
 names = set(re.findall(r'"(\w+)"', listed[1])) if listed else set()
 suffixes = ("xx", "yy", "zz", "yz", "xz", "xy", "vm", "p")

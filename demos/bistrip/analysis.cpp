@@ -1,6 +1,6 @@
 #include "analysis.h"
 
-#include <gelx/parameters.h>
+#include <gelx/io/parameters.h>
 
 namespace gelx::scenes
 {

@@ -5,9 +5,9 @@
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/utils.h>
-#include <gelx/collectives.h>
-#include <gelx/parameters.h>
-#include <gelx/prestretch.h>
+#include <gelx/common/collectives.h>
+#include <gelx/io/parameters.h>
+#include <gelx/systems/prestretch.h>
 #include <map>
 #include <random>
 #include <sstream>

@@ -15,10 +15,10 @@
 
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/Function.h>
-#include <gelx/boundary.h>
-#include <gelx/forms.h>
-#include <gelx/mesh.h>
-#include <gelx/problem.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/systems/forms.h>
+#include <gelx/io/mesh.h>
+#include <gelx/systems/problem.h>
 #include <memory>
 #include <mpi.h>
 #include <string>

@@ -46,11 +46,11 @@
 #include "path_record.h"
 #include "stability.h"
 
-#include <gelx/buckling.h>
-#include <gelx/newton.h>
-#include <gelx/output.h>
-#include <gelx/petsc_utils.h>
-#include <gelx/program.h>
+#include <gelx/solvers/buckling.h>
+#include <gelx/solvers/newton.h>
+#include <gelx/io/output.h>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/io/program.h>
 
 int main(int argc, char* argv[])
 {

@@ -1,12 +1,12 @@
 #include "methods.h"
 
-#include <gelx/arclength.h>
-#include <gelx/central_difference.h>
-#include <gelx/dynamics.h>
-#include <gelx/inertia.h>
-#include <gelx/newton.h>
-#include <gelx/petsc_utils.h>
-#include <gelx/progress.h>
+#include <gelx/solvers/arclength.h>
+#include <gelx/solvers/central_difference.h>
+#include <gelx/solvers/dynamics.h>
+#include <gelx/solvers/inertia.h>
+#include <gelx/solvers/newton.h>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/io/progress.h>
 #include <utility>
 
 namespace gelx::scenes

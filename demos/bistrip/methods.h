@@ -10,7 +10,7 @@
 #include "bistrip.h"
 #include "path_record.h"
 
-#include <gelx/program.h>
+#include <gelx/io/program.h>
 
 namespace gelx::scenes
 {

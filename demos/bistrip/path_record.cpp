@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <gelx/buckling.h>
-#include <gelx/timing.h>
+#include <gelx/solvers/buckling.h>
+#include <gelx/common/timing.h>
 #include <sstream>
 
 namespace gelx::scenes

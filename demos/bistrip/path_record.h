@@ -10,8 +10,8 @@
 #include "bistrip.h"
 #include "centreline.h"
 
-#include <gelx/output.h>
-#include <gelx/program.h>
+#include <gelx/io/output.h>
+#include <gelx/io/program.h>
 #include <nlohmann/json.hpp>
 #include <utility>
 #include <vector>

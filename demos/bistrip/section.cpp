@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <gelx/parameters.h>
+#include <gelx/io/parameters.h>
 #include <gmsh.h>
 #include <map>
 #include <sstream>

@@ -3,7 +3,7 @@
 /// The strip's cross-section as a stack of layers (thesis Fig. 3.10: bistrips and tristrips),
 /// and its structured hexahedral mesh.
 
-#include <gelx/mesh.h>
+#include <gelx/io/mesh.h>
 #include <mpi.h>
 #include <string>
 #include <vector>

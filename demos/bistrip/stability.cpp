@@ -2,11 +2,11 @@
 #include "path_record.h"
 
 #include <dolfinx/la/petsc.h>
-#include <gelx/buckling.h>
-#include <gelx/deflation.h>
-#include <gelx/field_series.h>
-#include <gelx/newton.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/solvers/buckling.h>
+#include <gelx/solvers/deflation.h>
+#include <gelx/io/field_series.h>
+#include <gelx/solvers/newton.h>
+#include <gelx/common/petsc_utils.h>
 
 namespace gelx::scenes
 {

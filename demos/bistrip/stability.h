@@ -8,8 +8,8 @@
 #include "bistrip.h"
 
 #include <filesystem>
-#include <gelx/buckling.h>
-#include <gelx/output.h>
+#include <gelx/solvers/buckling.h>
+#include <gelx/io/output.h>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <vector>

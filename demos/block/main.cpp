@@ -19,12 +19,12 @@
 
 #include <cmath>
 #include <dolfinx/fem/utils.h>
-#include <gelx/boundary.h>
-#include <gelx/forms.h>
-#include <gelx/load_stepping.h>
-#include <gelx/mesh.h>
-#include <gelx/problem.h>
-#include <gelx/program.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/systems/forms.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/io/mesh.h>
+#include <gelx/systems/problem.h>
+#include <gelx/io/program.h>
 
 using namespace dolfinx;
 

@@ -28,11 +28,11 @@
 
 #include "euler_column.h"
 
-#include <gelx/dynamics.h>
-#include <gelx/central_difference.h>
-#include <gelx/inertia.h>
-#include <gelx/petsc_utils.h>
-#include <gelx/program.h>
+#include <gelx/solvers/dynamics.h>
+#include <gelx/solvers/central_difference.h>
+#include <gelx/solvers/inertia.h>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/io/program.h>
 
 namespace
 {

@@ -3,10 +3,10 @@
 
 #include <cmath>
 #include <dolfinx/fem/utils.h>
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
-#include <gelx/newton.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
+#include <gelx/solvers/newton.h>
+#include <gelx/common/petsc_utils.h>
 
 using namespace dolfinx;
 

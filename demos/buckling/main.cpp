@@ -23,11 +23,11 @@
 
 #include "euler_column.h"
 
-#include <gelx/arclength.h>
-#include <gelx/deflation.h>
-#include <gelx/petsc_utils.h>
-#include <gelx/problem.h>
-#include <gelx/program.h>
+#include <gelx/solvers/arclength.h>
+#include <gelx/solvers/deflation.h>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/systems/problem.h>
+#include <gelx/io/program.h>
 #include <algorithm>
 #include <map>
 #include <memory>

@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 #include <dolfinx/mesh/utils.h>
-#include <gelx/parameters.h>
+#include <gelx/io/parameters.h>
 #include <gmsh.h>
 #include <map>
 #include <string>

@@ -5,7 +5,7 @@
 /// of it. The fiber is a capsule (a cylinder with hemispherical caps, l counting the caps) when
 /// l < L and a straight rod through the cell when l = L.
 
-#include <gelx/mesh.h>
+#include <gelx/io/mesh.h>
 #include <mpi.h>
 
 namespace gelx::scenes

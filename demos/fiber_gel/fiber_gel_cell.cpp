@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <dolfinx/fem/utils.h>
-#include <gelx/parameters.h>
+#include <gelx/io/parameters.h>
 #include <theory/flory_rehner.h>
 
 using namespace dolfinx;

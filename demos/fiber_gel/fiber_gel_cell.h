@@ -13,9 +13,9 @@
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/Function.h>
-#include <gelx/boundary.h>
-#include <gelx/constraints.h>
-#include <gelx/problem.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/systems/constraints.h>
+#include <gelx/systems/problem.h>
 #include <map>
 #include <memory>
 #include <string>

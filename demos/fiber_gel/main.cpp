@@ -18,9 +18,9 @@
 
 #include "fiber_gel_cell.h"
 
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
-#include <gelx/program.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
+#include <gelx/io/program.h>
 
 namespace
 {

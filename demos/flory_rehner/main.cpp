@@ -19,7 +19,7 @@
 #include "theory/flory_rehner.h"
 #include "theory/peo.h"
 
-#include <gelx/parameters.h>
+#include <gelx/io/parameters.h>
 
 #include <chrono>
 #include <cmath>

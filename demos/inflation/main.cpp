@@ -16,11 +16,11 @@
 
 #include "shell.h"
 
-#include <gelx/arclength.h>
-#include <gelx/load_stepping.h>
-#include <gelx/petsc_utils.h>
-#include <gelx/problem.h>
-#include <gelx/program.h>
+#include <gelx/solvers/arclength.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/systems/problem.h>
+#include <gelx/io/program.h>
 
 #include <cstdio>
 #include <dolfinx/common/MPI.h>

@@ -7,11 +7,11 @@
 
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/Function.h>
-#include <gelx/boundary.h>
-#include <gelx/constraints.h>
-#include <gelx/forms.h>
-#include <gelx/mesh.h>
-#include <gelx/problem.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/systems/constraints.h>
+#include <gelx/systems/forms.h>
+#include <gelx/io/mesh.h>
+#include <gelx/systems/problem.h>
 #include <memory>
 #include <mpi.h>
 #include <utility>

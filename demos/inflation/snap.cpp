@@ -31,11 +31,11 @@
 
 #include "shell.h"
 
-#include <gelx/arclength.h>
-#include <gelx/dynamics.h>
-#include <gelx/load_stepping.h>
-#include <gelx/petsc_utils.h>
-#include <gelx/program.h>
+#include <gelx/solvers/arclength.h>
+#include <gelx/solvers/dynamics.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/io/program.h>
 #include <chrono>
 #include <sstream>
 

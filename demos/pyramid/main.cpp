@@ -25,10 +25,10 @@
 #include "pyramid.h"
 
 #include <cstdio>
-#include <gelx/load_stepping.h>
-#include <gelx/petsc_utils.h>
-#include <gelx/problem.h>
-#include <gelx/program.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/systems/problem.h>
+#include <gelx/io/program.h>
 
 namespace
 {

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <dolfinx/common/MPI.h>
 #include <dolfinx/fem/utils.h>
-#include <gelx/collectives.h>
-#include <gelx/mixed.h>
-#include <gelx/parameters.h>
+#include <gelx/common/collectives.h>
+#include <gelx/systems/mixed.h>
+#include <gelx/io/parameters.h>
 
 using namespace dolfinx;
 

@@ -10,11 +10,11 @@
 #include <array>
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
-#include <gelx/boundary.h>
-#include <gelx/constraints.h>
-#include <gelx/contact.h>
-#include <gelx/output.h>
-#include <gelx/problem.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/systems/constraints.h>
+#include <gelx/systems/contact.h>
+#include <gelx/io/output.h>
+#include <gelx/systems/problem.h>
 #include <memory>
 #include <string>
 #include <vector>

@@ -3,7 +3,7 @@
 /// A structured hexahedral mesh of one eighth, one quarter or one half of the pyramid unit cell
 /// (thesis Fig. 2.2).
 
-#include <gelx/mesh.h>
+#include <gelx/io/mesh.h>
 #include <mpi.h>
 #include <string>
 

@@ -10,8 +10,8 @@
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/utils.h>
-#include <gelx/newton.h>
-#include <gelx/output.h>
+#include <gelx/solvers/newton.h>
+#include <gelx/io/output.h>
 #include <map>
 #include <memory>
 #include <numeric>

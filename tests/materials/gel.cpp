@@ -22,8 +22,8 @@
 #include "gel_box.h"
 #include "theory/flory_rehner.h"
 
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
 #include <petscsys.h>
 
 using namespace dolfinx;

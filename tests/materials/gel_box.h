@@ -7,7 +7,7 @@
 #include "common.h"
 #include "gel.h"
 
-#include <gelx/boundary.h>
+#include <gelx/systems/boundary.h>
 
 namespace gelx::test
 {

@@ -22,11 +22,11 @@
 #include "mixed_tet.h"
 #include "theory/flory_rehner.h"
 
-#include <gelx/boundary.h>
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
-#include <gelx/mixed.h>
-#include <gelx/prestretch.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
+#include <gelx/systems/mixed.h>
+#include <gelx/systems/prestretch.h>
 #include <petscsys.h>
 
 using namespace dolfinx;

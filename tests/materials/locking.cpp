@@ -24,10 +24,10 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <gelx/boundary.h>
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
-#include <gelx/petsc_utils.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
+#include <gelx/common/petsc_utils.h>
 #include <petscsys.h>
 #include <span>
 #include <stdexcept>

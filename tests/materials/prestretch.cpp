@@ -20,10 +20,10 @@
 #include "common.h"
 #include "compressible.h"
 
-#include <gelx/boundary.h>
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
-#include <gelx/prestretch.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
+#include <gelx/systems/prestretch.h>
 #include <petscsys.h>
 
 using namespace dolfinx;

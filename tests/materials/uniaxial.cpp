@@ -28,10 +28,10 @@
 #include "mixed_tet.h"
 
 #include <dolfinx/mesh/cell_types.h>
-#include <gelx/boundary.h>
-#include <gelx/load_stepping.h>
-#include <gelx/problem.h>
-#include <gelx/mixed.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/solvers/load_stepping.h>
+#include <gelx/systems/problem.h>
+#include <gelx/systems/mixed.h>
 #include <petscsys.h>
 
 using namespace dolfinx;

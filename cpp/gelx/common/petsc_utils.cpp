@@ -1,0 +1,217 @@
+#include <gelx/common/petsc_utils.h>
+#include <gelx/io/parameters.h>
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <set>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+namespace gelx
+{
+
+void petsc_check(PetscErrorCode ierr, const char* call)
+{
+  if (ierr == 0)
+    return;
+  const char* text = nullptr;
+  PetscErrorMessage(ierr, &text, nullptr);
+  throw std::runtime_error(std::string("PETSc call failed: ") + call + ": "
+                           + (text ? text : "unknown error"));
+}
+
+namespace
+{
+std::set<std::string>& defaults_set()
+{
+  static std::set<std::string> names;
+  return names;
+}
+} // namespace
+
+void set_default_option(const std::string& prefix, const std::string& name,
+                        const std::string& value)
+{
+  const std::string option = "-" + prefix + name;
+  PetscBool is_set = PETSC_FALSE;
+  GELX_PETSC(PetscOptionsHasName(nullptr, nullptr, option.c_str(), &is_set));
+  if (!is_set)
+  {
+    GELX_PETSC(PetscOptionsSetValue(nullptr, option.c_str(),
+                                    value.empty() ? nullptr : value.c_str()));
+    defaults_set().insert(prefix + name);
+  }
+}
+
+void set_default_options(const std::string& prefix,
+                         const std::vector<std::pair<std::string, std::string>>& options)
+{
+  for (const auto& [name, value] : options)
+    set_default_option(prefix, name, value);
+}
+
+bool is_default_option(const std::string& option) { return defaults_set().count(option) > 0; }
+
+namespace
+{
+/// The names (without the dash) of the options no object read, but the defaults
+std::vector<std::string> unread_option_names()
+{
+  PetscInt n = 0;
+  char **names = nullptr, **values = nullptr;
+  PetscOptionsLeftGet(nullptr, &n, &names, &values);
+  std::vector<std::string> unread;
+  for (PetscInt i = 0; i < n; ++i)
+    if (!is_default_option(names[i]))
+      unread.push_back(names[i]);
+  PetscOptionsLeftRestore(nullptr, &n, &names, &values);
+  return unread;
+}
+
+std::string dashed_list(const std::vector<std::string>& names)
+{
+  std::string list;
+  for (const auto& name : names)
+    list += (list.empty() ? "-" : ", -") + name;
+  return list;
+}
+
+/// Where the object-class part of an option name can start: "snes_" in "newton_snes_rtol"
+const std::vector<std::string> solver_classes
+    = {"snes_", "ksp_", "pc_", "mat_", "ts_", "eps_", "st_", "tao_"};
+
+/// The prefixes (with their trailing '_', or "") of the solver objects that read an option:
+/// for each option read, each prefix that a solver class follows in its name
+std::set<std::string> prefixes_of_read_options()
+{
+  char* all = nullptr;
+  PetscOptionsGetAll(nullptr, &all);
+  std::istringstream words(all ? all : "");
+  PetscFree(all);
+  std::set<std::string> prefixes;
+  std::string word;
+  while (words >> word)
+  {
+    if (word.size() < 2 || word[0] != '-' || std::isdigit(word[1]) || word[1] == '.')
+      continue; // a value
+    const std::string name = word.substr(1);
+    PetscBool used = PETSC_FALSE;
+    PetscOptionsUsed(nullptr, name.c_str(), &used); // the name without its dash
+    if (!used)
+      continue;
+    for (std::size_t at = 0;;) // at the start and after each '_'
+    {
+      for (const auto& cls : solver_classes)
+        if (name.compare(at, cls.size(), cls) == 0)
+          prefixes.insert(name.substr(0, at));
+      const std::size_t next = name.find('_', at);
+      if (next == std::string::npos)
+        break;
+      at = next + 1;
+    }
+  }
+  return prefixes;
+}
+} // namespace
+
+std::string unused_options() { return dashed_list(unread_option_names()); }
+
+std::string unread_options_of_set_up_solvers()
+{
+  const std::vector<std::string> unread = unread_option_names();
+  if (unread.empty())
+    return "";
+  const std::set<std::string> prefixes = prefixes_of_read_options();
+  std::vector<std::string> misspelt;
+  for (const auto& name : unread)
+  {
+    // PETSc reads these at the end of a solve (a TS's or an EPS's: after the step's line)
+    if (name.find("view") != std::string::npos
+        || name.find("converged_reason") != std::string::npos)
+      continue;
+    for (const auto& prefix : prefixes)
+      if (name.compare(0, prefix.size(), prefix) == 0
+          && std::any_of(solver_classes.begin(), solver_classes.end(),
+                         [&](const std::string& cls)
+                         { return name.compare(prefix.size(), cls.size(), cls) == 0; }))
+      {
+        misspelt.push_back(name);
+        break;
+      }
+  }
+  return dashed_list(misspelt);
+}
+
+void set_linear_solver_defaults(const std::string& prefix)
+{
+  // The Krylov sets: a restart long enough for the few hundred iterations of a hard tangent,
+  // and a bound that makes a preconditioner that fails show as a failed step, not an hour.
+  // FGMRES for fieldsplit: the Schur complement's inner solves make the preconditioner vary.
+  using Options = std::vector<std::pair<std::string, std::string>>;
+  const Options krylov = {{"ksp_gmres_restart", "200"}, {"ksp_rtol", "1e-10"},
+                          {"ksp_max_it", "2000"}};
+  const std::map<std::string, Options> sets = {
+      {"direct",
+       {{"ksp_type", "preonly"}, {"pc_type", "lu"}, {"pc_factor_mat_solver_type", "mumps"}}},
+      {"amg", {{"ksp_type", "gmres"}, {"pc_type", "gamg"}}},
+      {"fieldsplit",
+       {{"ksp_type", "fgmres"},
+        {"pc_type", "fieldsplit"},
+        {"pc_fieldsplit_type", "schur"},
+        {"pc_fieldsplit_schur_fact_type", "full"},
+        {"pc_fieldsplit_schur_precondition", "selfp"},
+        {"fieldsplit_u_ksp_type", "preonly"},
+        {"fieldsplit_u_pc_type", "gamg"},
+        {"fieldsplit_p_ksp_type", "preonly"},
+        {"fieldsplit_p_pc_type", "jacobi"}}}};
+  const std::string name = string_option(prefix, "linear_solver", "direct");
+  const auto set = sets.find(name);
+  if (set == sets.end())
+    throw InputError("-" + prefix + "linear_solver " + name
+                     + ": unknown option set (direct, amg, fieldsplit)");
+  for (const auto& [option, value] : set->second)
+    set_default_option(prefix, option, value);
+  if (name != "direct")
+    for (const auto& [option, value] : krylov)
+      set_default_option(prefix, option, value);
+}
+
+KSP create_linear_solver(MPI_Comm comm, const std::string& prefix)
+{
+  set_linear_solver_defaults(prefix);
+  KSP ksp;
+  GELX_PETSC(KSPCreate(comm, &ksp));
+  GELX_PETSC(KSPSetOptionsPrefix(ksp, prefix.c_str()));
+  GELX_PETSC(KSPSetFromOptions(ksp));
+  return ksp;
+}
+
+double real_option(const std::string& prefix, const std::string& name, double fallback)
+{
+  PetscReal value = fallback;
+  GELX_PETSC(PetscOptionsGetReal(nullptr, prefix.c_str(), ("-" + name).c_str(), &value,
+                                 nullptr));
+  return value;
+}
+
+int int_option(const std::string& prefix, const std::string& name, int fallback)
+{
+  PetscInt value = fallback;
+  GELX_PETSC(PetscOptionsGetInt(nullptr, prefix.c_str(), ("-" + name).c_str(), &value,
+                                nullptr));
+  return static_cast<int>(value);
+}
+
+std::string string_option(const std::string& prefix, const std::string& name,
+                          const std::string& fallback)
+{
+  char value[256];
+  PetscBool found = PETSC_FALSE;
+  GELX_PETSC(PetscOptionsGetString(nullptr, prefix.c_str(), ("-" + name).c_str(), value,
+                                   sizeof(value), &found));
+  return found ? std::string(value) : fallback;
+}
+
+} // namespace gelx

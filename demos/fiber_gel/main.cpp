@@ -59,7 +59,10 @@ int main(int argc, char* argv[])
   prm.bind("material", "alpha0", gel.alpha0,
            "free contraction ratio from T_i to T_f (Eq. 4.13)", unit_interval);
   prm.bind("loading", "T_i", gel.T_i, "initial temperature (K)", gelx::Parameters::positive);
-  prm.bind("loading", "T_f", gel.T_f, "final temperature (K)", gelx::Parameters::positive);
+  prm.bind("loading", "T_f", gel.T_f,
+           "final temperature (K): chi(T) is fitted so that the free gel contracts by alpha0 "
+           "at T_f, so T_f places that state on the temperature axis",
+           gelx::Parameters::positive);
   stepping.bind(prm);
 
   return gelx::run_program(argc, argv, "gelx-fiber_gel", prm, [&](gelx::Run& run)

@@ -71,7 +71,7 @@ checks.require(f"coloured by the field: {blue:.1%} blue-dominated and {red:.1%} 
 
 
 def processes_of_group(group):
-    """The live processes (not zombies) of a process group, by /proc"""
+    """The live processes (not zombies) of a process group, by /proc: [(pid, command)]"""
     found = []
     for stat in pathlib.Path("/proc").glob("[0-9]*/stat"):
         try:
@@ -81,7 +81,7 @@ def processes_of_group(group):
             continue
         fields = text[text.rindex(")") + 2:].split()
         if fields[0] != "Z" and int(fields[2]) == group:
-            found.append(text[text.index("(") + 1:text.rindex(")")])
+            found.append((int(stat.parent.name), text[text.index("(") + 1:text.rindex(")")]))
     return found
 
 
@@ -95,8 +95,8 @@ for _ in range(100):
     if not left:
         break
     time.sleep(0.1)
-checks.require(f"an interrupted render left no process behind within 10 s (left: {left})",
-               not left)
+checks.require(f"an interrupted render left no process behind within 10 s (left: "
+               f"{[command for _, command in left]})", not left)
 if left:
     os.killpg(interrupted.pid, signal.SIGKILL)  # not to hold up the rest of the suite
 
@@ -104,14 +104,12 @@ killed = subprocess.Popen(view(0, out / "killed.png"), stdout=subprocess.DEVNULL
                           stderr=subprocess.DEVNULL, start_new_session=True)
 time.sleep(4)
 for _ in range(3):  # the whole process group but the display server, SIGKILL: no trap runs
-    for stat in pathlib.Path("/proc").glob("[0-9]*/stat"):
-        try:
-            text = stat.read_text()
-            fields = text[text.rindex(")") + 2:].split()
-            if int(fields[2]) == killed.pid and "Xvfb" not in text[:text.rindex(")")]:
-                os.kill(int(stat.parent.name), signal.SIGKILL)
-        except (OSError, ValueError):
-            continue
+    for pid, command in processes_of_group(killed.pid):
+        if command != "Xvfb":
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
 killed.wait()
 start = time.time()
 first = render(0, timeout=120)

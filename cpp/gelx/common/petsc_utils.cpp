@@ -86,17 +86,11 @@ const std::vector<std::string> solver_classes
 /// for each option read, each prefix that a solver class follows in its name
 std::set<std::string> prefixes_of_read_options()
 {
-  char* all = nullptr;
-  PetscOptionsGetAll(nullptr, &all);
-  std::istringstream words(all ? all : "");
-  PetscFree(all);
   std::set<std::string> prefixes;
-  std::string word;
-  while (words >> word)
+  const nlohmann::json options = petsc_options();
+  for (const auto& option : options.items())
   {
-    if (word.size() < 2 || word[0] != '-' || std::isdigit(word[1]) || word[1] == '.')
-      continue; // a value
-    const std::string name = word.substr(1);
+    const std::string& name = option.key();
     PetscBool used = PETSC_FALSE;
     PetscOptionsUsed(nullptr, name.c_str(), &used); // the name without its dash
     if (!used)
@@ -115,6 +109,26 @@ std::set<std::string> prefixes_of_read_options()
   return prefixes;
 }
 } // namespace
+
+nlohmann::json petsc_options()
+{
+  char* all = nullptr;
+  PetscOptionsGetAll(nullptr, &all);
+  std::istringstream words(all ? all : "");
+  PetscFree(all);
+  nlohmann::json options = nlohmann::json::object();
+  std::string word, name;
+  auto is_name = [](const std::string& w)
+  { return w.size() > 1 && w[0] == '-' && !std::isdigit(w[1]) && w[1] != '.'; };
+  while (words >> word)
+  {
+    if (is_name(word))
+      options[name = word.substr(1)] = nullptr;
+    else if (!name.empty())
+      options[name] = options[name].is_null() ? word : options[name].get<std::string>() + " " + word;
+  }
+  return options;
+}
 
 std::string unused_options() { return dashed_list(unread_option_names()); }
 

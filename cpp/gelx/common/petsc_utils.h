@@ -4,6 +4,7 @@
 /// what the user passed.
 
 #include <exception>
+#include <nlohmann/json.hpp>
 #include <petscksp.h>
 #include <stdexcept>
 #include <string>
@@ -48,6 +49,10 @@ void set_default_options(const std::string& prefix,
 /// Whether set_default_option set `option` (its name without the dash): a default that a
 /// user's other choices may leave unread (MUMPS for an iterative solve) is no mistake.
 bool is_default_option(const std::string& option);
+
+/// Every option in PETSc's database, as {name: value} (value null for a bare flag): the
+/// solver choices in effect, the scene's defaults included, read back rather than retyped.
+nlohmann::json petsc_options();
 
 /// The options no solver object read (a mistyped or misplaced option) but the defaults, as
 /// "-a, -b"; "" when none. At the end of a run: every object has had its chance.

@@ -17,28 +17,6 @@ namespace gelx
 {
 namespace
 {
-/// Every option in PETSc's database, as {name: value} (value null for a bare flag): the
-/// solver choices in effect, the scene's defaults included, read back rather than retyped.
-nlohmann::json petsc_options()
-{
-  char* all = nullptr;
-  PetscOptionsGetAll(nullptr, &all);
-  std::istringstream words(all ? all : "");
-  PetscFree(all);
-  nlohmann::json options = nlohmann::json::object();
-  std::string word, name;
-  auto is_name = [](const std::string& w)
-  { return w.size() > 1 && w[0] == '-' && !std::isdigit(w[1]) && w[1] != '.'; };
-  while (words >> word)
-  {
-    if (is_name(word))
-      options[name = word.substr(1)] = nullptr;
-    else if (!name.empty())
-      options[name] = options[name].is_null() ? word : options[name].get<std::string>() + " " + word;
-  }
-  return options;
-}
-
 /// What failed in HDF5's last error, as " (REASON writing FILE)", from the innermost entry of
 /// its error stack that names them (a full disk: "No space left on device"); "" when none.
 /// dolfinx's own message says only which HDF5 call failed ("Failed to close HDF5 dataset.").
@@ -212,17 +190,23 @@ double Run::elapsed() const
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - _start).count();
 }
 
-void Run::finish(const std::string& status)
+nlohmann::json Run::local_record() const
 {
-  if (!_results)
-    return;
   nlohmann::json record = summary;
   record["wall_time"] = elapsed();
-  record.update(time_split(_comm, record["wall_time"]));
   record["petsc_options"] = petsc_options();
   if (!_restart_from.empty())
     record["restarted_from"] = {{"step", _restart_record.at("path").at("step")},
                                 {"ranks", _restart_record.at("ranks")}};
+  return record;
+}
+
+void Run::finish(const std::string& status)
+{
+  if (!_results)
+    return;
+  nlohmann::json record = local_record();
+  record.update(time_split(_comm, record["wall_time"]));
   _results->write_summary(_scene, status, _parameters, record);
 }
 
@@ -232,11 +216,9 @@ void Run::finish_alone(const std::string& status) noexcept
     return;
   try
   {
-    nlohmann::json record = summary;
-    record["wall_time"] = elapsed();
-    _results->write_summary(_scene, status, _parameters, record);
+    _results->write_summary(_scene, status, _parameters, local_record());
   }
-  catch (...)
+  catch (...) // a full disk: nothing more can be saved
   {
   }
 }

@@ -70,6 +70,9 @@ public:
   void finish_alone(const std::string& status) noexcept;
 
 private:
+  /// What this rank knows of the run record, without communicating: `summary`, the wall
+  /// time, the PETSc options, where a restart continued from
+  nlohmann::json local_record() const;
   /// A new run removes the checkpoints of an earlier run in its folder (once)
   void forget_old_checkpoints();
 

@@ -113,6 +113,8 @@ CASES = {
         ("end_distance_beyond_L", ["--end_distance", "300"], "end_distance must be below L"),
         ("seed_mode_not_computed", ["--modes", "2", "--seed_mode", "3"],
          "seed_mode must be one of the computed modes"),
+        ("noise_without_mode", ["--seed", "random", "--noise", "0.01"],
+         "--noise adds to a seeded mode: --seed mode"),
         # 300 mm slab: the first critical shortening 73 % off (ran to the end before, rc 0)
         ("one_slab", ["--nz", "1"], "--nz 1 makes slabs of 300 mm, more than 3.5 times the "
          "section's thickness 4.7 mm: the strip's buckling is not resolved (use --nz 19"),

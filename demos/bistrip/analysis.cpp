@@ -26,6 +26,12 @@ void BistripAnalysis::bind(Parameters& prm)
            Parameters::one_of({"instant", "quench", "ramp"}));
   prm.bind("analysis", "harmonics", harmonics, "sines along the strip of --seed random",
            Parameters::at_least_one);
+  prm.bind("analysis", "noise", noise,
+           "amplitude of a random imperfection added to the seeded mode (mm; 0: none)",
+           Parameters::non_negative);
+  prm.bind("analysis", "random_seed", random_seed,
+           "the generator's seed of the random imperfection (--seed random or --noise)",
+           Parameters::at_least_one);
   prm.bind("analysis", "imperfection", imperfection,
            "amplitude of the seeded mode (mm, its largest component 1)",
            Parameters::non_negative);
@@ -60,6 +66,8 @@ void BistripAnalysis::check(const BistripParameters& p) const
     throw InputError("--bonding " + bonding + " needs --seed random and --method dynamics");
   if (return_distance > 0 && method == "arclength")
     throw InputError("return_distance needs --method dynamics, inertia or explicit");
+  if (noise > 0 && seed != "mode")
+    throw InputError("--noise adds to a seeded mode: --seed mode");
   if (seed_mode > modes)
     throw InputError("seed_mode must be one of the computed modes (1 .. modes)");
 }

@@ -47,6 +47,12 @@ struct BistripAnalysis
   /// all of it, the strip left to buckle) or "ramp" (built up log-linearly)
   std::string bonding = "instant";
   int harmonics = 60;
+  /// Amplitude (mm) of a random imperfection added to the seeded mode (0: none). A
+  /// mirror-symmetric mode keeps a deterministic path symmetric to round-off; this breaks the
+  /// symmetry by a stated amount, as round-off does in explicit dynamics
+  double noise = 0;
+  /// The generator's seed of the random imperfection (--seed random, or --noise)
+  int random_seed = 1;
   /// Equilibria to seek by deflation at the final end distance, besides the path's (0: none)
   int equilibria = 0;
   /// The deflation's guesses: the path's state plus or minus each buckling mode at this

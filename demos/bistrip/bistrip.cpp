@@ -39,7 +39,7 @@ void BistripParameters::bind(Parameters& prm)
            Parameters::one_of({"clamped", "free"}));
   prm.bind("material", "G", G, "shear modulus (MPa)", Parameters::positive);
   prm.bind("material", "K", K, "bulk modulus (MPa)", Parameters::positive);
-  prm.bind("material", "rho", rho, "mass density (damped dynamics only)", Parameters::positive);
+  prm.bind("material", "rho", rho, "mass density (the dynamic methods)", Parameters::positive);
   prm.bind("mesh", "degree", degree, "displacement element: 2 (Q2 hexahedra) or 1 (Q1)",
            [](int d) { return d == 1 || d == 2 ? "" : "must be 1 or 2"; });
   prm.bind("mesh", "nz", nz, "cell layers (slabs) along the strip", Parameters::at_least_one);

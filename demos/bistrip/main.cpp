@@ -123,14 +123,18 @@ int main(int argc, char* argv[])
                                              run.summary);
     const std::vector<gelx::BucklingMode>& modes = bonded.modes;
 
-    // 4. The imperfection (and, with --bonding ramp, A without its prestretch yet)
+    // 4. The imperfection, a buckling mode (plus --noise, random) or random (and, with
+    //    --bonding ramp, A without its prestretch yet)
     if (a.bonding == "ramp")
       strip.set_prestretch_fraction(0);
-    gelx::seed_imperfection(*strip.mesh().mesh,
-                            {a.seed == "mode" ? modes[a.seed_mode - 1]
-                                              : gelx::BucklingMode{0, strip.random_imperfection(
-                                                                          a.harmonics, 1)}},
-                            {a.imperfection});
+    const gelx::BucklingMode random{0, strip.random_imperfection(a.harmonics, a.random_seed)};
+    if (a.seed == "random")
+      gelx::seed_imperfection(*strip.mesh().mesh, {random}, {a.imperfection});
+    else if (a.noise > 0)
+      gelx::seed_imperfection(*strip.mesh().mesh, {modes[a.seed_mode - 1], random},
+                              {a.imperfection, a.noise});
+    else
+      gelx::seed_imperfection(*strip.mesh().mesh, {modes[a.seed_mode - 1]}, {a.imperfection});
     gelx::ResultsWriter& results = run.results(strip.mesh().mesh);
     if (!modes.empty())
       results.write_table("eigenvalues.csv", bonded.rows);

@@ -197,47 +197,6 @@ PetscErrorCode line_search_succeeded(TSAdapt, TS ts, PetscReal, Vec, PetscBool* 
 }
 } // namespace
 
-namespace
-{
-/// SNESSetUpdate hook of reuse_factors, at the start of each Newton iteration: the factors
-/// are rebuilt with the next tangent once the last linear solve was slow or failed
-PetscErrorCode refactor_when_slow(SNES snes, PetscInt)
-{
-  const char* prefix;
-  PetscCall(SNESGetOptionsPrefix(snes, &prefix));
-  PetscInt bound = 0;
-  PetscCall(PetscOptionsGetInt(nullptr, prefix, "-reuse_factors", &bound, nullptr));
-  KSP ksp;
-  PetscCall(SNESGetKSP(snes, &ksp));
-  PetscInt iterations;
-  KSPConvergedReason reason;
-  PetscCall(KSPGetIterationNumber(ksp, &iterations));
-  PetscCall(KSPGetConvergedReason(ksp, &reason));
-  if (iterations > bound || reason < 0)
-    PetscCall(SNESSetLagPreconditioner(snes, -2)); // rebuild once, then keep again
-  return 0;
-}
-} // namespace
-
-void reuse_factors(TS ts, const std::string& prefix)
-{
-  const int bound = int_option(prefix, "reuse_factors", 0);
-  if (bound <= 0)
-    return;
-  SNES snes;
-  GELX_PETSC(TSGetSNES(ts, &snes));
-  KSP ksp;
-  GELX_PETSC(SNESGetKSP(snes, &ksp));
-  GELX_PETSC(KSPSetType(ksp, KSPGMRES));
-  // A slow solve is cut at 2K iterations and its direction still used: the hook refactors
-  // for the next iteration, and Newton, not the stage, absorbs the inexact step
-  GELX_PETSC(KSPSetTolerances(ksp, 1e-10, PETSC_DEFAULT, PETSC_DEFAULT, 2 * bound));
-  GELX_PETSC(SNESSetMaxLinearSolveFailures(snes, 1000000));
-  GELX_PETSC(SNESSetLagPreconditioner(snes, -1));
-  GELX_PETSC(SNESSetLagPreconditionerPersists(snes, PETSC_TRUE));
-  GELX_PETSC(SNESSetUpdate(snes, refactor_when_slow));
-}
-
 void reject_failed_line_searches(TS ts)
 {
   TSAdapt adapt;
@@ -425,7 +384,6 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSSetPreStep(_ts, gelx::pre_step));
   GELX_PETSC(TSSetFromOptions(_ts));
   reject_failed_line_searches(_ts);
-  reuse_factors(_ts, prefix);
   PetscBool bdf;
   GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSBDF, &bdf));
   _restartable = bdf;

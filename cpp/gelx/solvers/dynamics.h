@@ -72,17 +72,6 @@ void set_time_stepping_defaults(const std::string& prefix, const std::string& ty
 /// there on every step was accepted so, the end force frozen, until the kinetic energy
 /// reached 1e269.
 void reject_failed_line_searches(TS ts);
-/// With -PREFIXreuse_factors K (K > 0; call after TSSetFromOptions): the tangent's LU
-/// factors are kept across Newton iterations and time steps, the linear solves done by GMRES
-/// preconditioned with them (to 1e-10), and refactored only once a solve needed more than K
-/// GMRES iterations (or failed). The tangent is still assembled at every Newton iteration, so
-/// Newton converges as before; what is saved is the factorisations. Why a hook: PETSc 3.18 can
-/// lag the preconditioner only by a fixed count (-snes_lag_preconditioner), and a fixed lag
-/// keeps stale factors through a snap, where GMRES then takes thousands of iterations
-/// (measured on the bistrip: steps of 30 to 70 s instead of 0.5 s). A restart refactors at
-/// its first iteration, so a restarted run equals the uninterrupted one to GMRES's tolerance,
-/// not to round-off.
-void reuse_factors(TS ts, const std::string& prefix);
 
 /// TS's counters at the last accepted step, so that each step reports its own share.
 struct StepCounters

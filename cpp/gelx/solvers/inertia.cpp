@@ -221,7 +221,6 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSSetPostStep(_ts, post_step));
   GELX_PETSC(TSSetFromOptions(_ts));
   reject_failed_line_searches(_ts);
-  reuse_factors(_ts, prefix);
   PetscBool alpha2;
   GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSALPHA2, &alpha2));
   if (!alpha2 && !_explicit)

@@ -5,9 +5,10 @@ import os
 import subprocess
 
 # Open MPI refuses root without these (CI and the dev machines run as root); more ranks than
-# cores are allowed so that a 2-rank study also runs on a 1-core machine
+# cores are allowed so that a 2-rank study also runs on a 1-core machine; no binding, which
+# puts every run's rank 0 on core 0, so that two 1-rank runs side by side shared one core
 MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               OMPI_MCA_rmaps_base_oversubscribe="1")
+               OMPI_MCA_rmaps_base_oversubscribe="1", OMPI_MCA_hwloc_base_binding_policy="none")
 
 
 def run_scene(build, scene, folder, ranks, options, reuse=False):

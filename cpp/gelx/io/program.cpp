@@ -232,8 +232,8 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
                  "write a checkpoint of the path every N steps (0: none)",
                  [](int v) { return v >= 0 ? "" : "must not be negative"; });
   parameters.add("output", "stop_after_steps", 0,
-                 "end the run, as a success, after this many steps in all (0: run to the end): "
-                 "a quick check that a command runs",
+                 "end the run, as a success, after this many steps of all its legs (0: run to "
+                 "the end; a restart counts its own steps): a quick check that a command runs",
                  [](int v) { return v >= 0 ? "" : "must not be negative"; });
   parameters.add("output", "restart", "",
                  "continue the run in this results folder from its newest checkpoint, with its "

@@ -127,14 +127,19 @@ int main(int argc, char* argv[])
     //    --bonding ramp, A without its prestretch yet)
     if (a.bonding == "ramp")
       strip.set_prestretch_fraction(0);
-    const gelx::BucklingMode random{0, strip.random_imperfection(a.harmonics, a.random_seed)};
-    if (a.seed == "random")
-      gelx::seed_imperfection(*strip.mesh().mesh, {random}, {a.imperfection});
-    else if (a.noise > 0)
-      gelx::seed_imperfection(*strip.mesh().mesh, {modes[a.seed_mode - 1], random},
-                              {a.imperfection, a.noise});
-    else
-      gelx::seed_imperfection(*strip.mesh().mesh, {modes[a.seed_mode - 1]}, {a.imperfection});
+    std::vector<gelx::BucklingMode> shapes;
+    std::vector<double> amplitudes;
+    if (a.seed == "mode")
+    {
+      shapes.push_back(modes[a.seed_mode - 1]);
+      amplitudes.push_back(a.imperfection);
+    }
+    if (a.seed == "random" || a.noise > 0)
+    {
+      shapes.push_back({0, strip.random_imperfection(a.harmonics, a.random_seed)});
+      amplitudes.push_back(a.seed == "random" ? a.imperfection : a.noise);
+    }
+    gelx::seed_imperfection(*strip.mesh().mesh, shapes, amplitudes);
     gelx::ResultsWriter& results = run.results(strip.mesh().mesh);
     if (!modes.empty())
       results.write_table("eigenvalues.csv", bonded.rows);

@@ -13,6 +13,7 @@ usage: bad_input.py SCENE SCENE_BINARY WORK_DIR [MPIEXEC]
 import concurrent.futures
 import csv
 import json
+import os
 import pathlib
 import re
 import shutil
@@ -94,8 +95,9 @@ CASES = {
     ],
     "flory_rehner": [
         ("negative_n_nu_vm", ["--n_nu_vm", "-0.1"], "every value must be positive"),
-        ("nan_in_n_nu_vm", ["--n_nu_vm", "0.1,nan"], "every value must be positive"),
-        ("garbage_in_n_nu_vm", ["--n_nu_vm", "0.1x"], "comma-separated list of numbers"),
+        ("nan_in_n_nu_vm", ["--n_nu_vm", "0.1,nan"], "'nan' in the list '0.1,nan' is not a finite"),
+        ("garbage_in_n_nu_vm", ["--n_nu_vm", "0.1x"], "'0.1x' in the list '0.1x' is not a finite"),
+        ("empty_item_in_n_nu_vm", ["--n_nu_vm", "0.1,"], "has an empty item"),
         ("phi_i_max_one", ["--phi_i_max", "1.0"], "must lie in (0, 1)"),
         ("phi_f_beyond_one", ["--alpha0", "0.77"], "must stay below alpha0^3"),
         ("grid_min_above_max", ["--eps_min", "0.5", "--eps_max", "0.2"], "min < max"),
@@ -209,6 +211,7 @@ parameters = parameters_from_help()
 reals = [n for n, (kind, _) in parameters.items() if kind == "real"]
 integers = [n for n, (kind, _) in parameters.items() if kind == "integer"]
 flags = [n for n, (kind, _) in parameters.items() if kind == "flag"]
+texts = [n for n, (kind, _) in parameters.items() if kind == "text"]
 print(f"real parameters: {' '.join(reals)}")
 cases = [(f"{n}_{v.replace('-', 'minus_')}", [f"--{n}", v], f"'{n}': '{v}' is not a finite number")
          for n in reals for v in ["nan", "inf", "-inf"]]
@@ -232,6 +235,17 @@ cases += [
     ("missing_scene_file", ["--scene", str(work / "no-such.scene")], "cannot read scene file"),
     ("garbled_scene_file", ["--scene", str(garbled_file)],
      f"{garbled_file}:2: expected 'name = value'"),
+    ("scene_file_is_a_folder", ["--scene", str(work)], "cannot read scene file"),
+    # A word that is neither a parameter, a PETSc option nor an option's value: PETSc would
+    # ignore it, and scene.txt could not replay it (tests/fuzz found "-2.5" after --offset)
+    ("stray_negative_number", ["-5"], "unexpected argument '-5'"),
+    ("petsc_value_with_space", ["-x_ksp_type", "a b"],
+     "PETSc argument 'a b' holds a space, which a scene file cannot hold"),
+    # Texts a scene file could not replay, or summary.json hold
+    (f"{texts[0]}_with_hash", [f"--{texts[0]}", "a#b"],
+     f"'{texts[0]}': the text holds '#', which starts a comment in a scene file"),
+    (f"{texts[0]}_not_utf8", [f"--{texts[0]}", os.fsdecode(b"caf\xe9")],
+     f"'{texts[0]}': the text is not UTF-8"),
 ]
 refuse(cases + CASES[scene])
 

@@ -38,34 +38,18 @@ namespace
 const char* peo_names[] = {"peo_chi_A",    "peo_chi_B",     "peo_v_over_vp", "peo_energy_p",
                            "peo_entropy_p", "peo_energy_w", "peo_entropy_w"};
 
-std::vector<double> parse_list(const std::string& text)
-{
-  std::vector<double> v;
-  std::stringstream s(text);
-  for (std::string item; std::getline(s, item, ',');)
-  {
-    std::size_t used = 0;
-    double x = std::stod(item, &used);
-    if (item.find_first_not_of(" \t", used) != std::string::npos)
-      throw std::invalid_argument("trailing characters in '" + item + "'");
-    v.push_back(x);
-  }
-  return v;
-}
-
 std::string positive_list(const std::string& text)
 {
   try
   {
-    auto v = parse_list(text);
-    for (double x : v)
-      if (!(x > 0.0) || !std::isfinite(x))
+    for (double x : gelx::Parameters::real_list(text))
+      if (!(x > 0.0))
         return "every value must be positive";
-    return v.empty() ? "needs at least one value" : "";
+    return "";
   }
-  catch (const std::exception&)
+  catch (const gelx::InputError& e)
   {
-    return "must be a comma-separated list of numbers";
+    return e.what();
   }
 }
 
@@ -183,7 +167,7 @@ int main(int argc, char* argv[])
     std::cout << "Fig. 4.2b maps (alpha0 = " << a0 << "):\n";
     const auto phi = th::linspace(prm.real("phi_i_min"), prm.real("phi_i_max"), prm.integer("n_phi"));
     const auto eps = th::linspace(prm.real("eps_min"), prm.real("eps_max"), prm.integer("n_eps"));
-    for (double n : parse_list(prm.text("n_nu_vm")))
+    for (double n : gelx::Parameters::real_list(prm.text("n_nu_vm")))
     {
       std::ostringstream name;
       name << "amax_n" << n << ".csv";

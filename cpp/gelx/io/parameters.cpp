@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -23,6 +24,49 @@ std::string trim(const std::string& s)
 bool is_option_name(const std::string& word)
 {
   return word.size() > 1 && word[0] == '-' && !std::isdigit(word[1]) && word[1] != '.';
+}
+
+/// Whether text[i...] starts with a well-formed UTF-8 sequence (RFC 3629: no overlong form, no
+/// surrogate, nothing past U+10FFFF, as JSON writers require); its length, else 0
+std::size_t utf8_length(const std::string& text, std::size_t i)
+{
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned c = byte(i);
+  if (c < 0x80)
+    return 1;
+  // the sequence's length and the range of its second byte, from its first
+  std::size_t n = 0;
+  unsigned lo = 0x80, hi = 0xbf;
+  if (c >= 0xc2 && c <= 0xdf)
+    n = 2;
+  else if (c >= 0xe0 && c <= 0xef)
+    n = 3, lo = c == 0xe0 ? 0xa0 : 0x80, hi = c == 0xed ? 0x9f : 0xbf;
+  else if (c >= 0xf0 && c <= 0xf4)
+    n = 4, lo = c == 0xf0 ? 0x90 : 0x80, hi = c == 0xf4 ? 0x8f : 0xbf;
+  if (n == 0 || i + n > text.size() || byte(i + 1) < lo || byte(i + 1) > hi)
+    return 0;
+  for (std::size_t k = 2; k < n; ++k)
+    if (byte(i + k) < 0x80 || byte(i + k) > 0xbf)
+      return 0;
+  return n;
+}
+
+/// Why a scene file could not hold `text` as a value ("" when it can): scene.txt must replay
+/// every value exactly, and '#' starts a comment there, a line ends at a newline, and JSON
+/// (summary.json) holds only UTF-8
+std::string unwritable(const std::string& text)
+{
+  for (std::size_t i = 0, n; i < text.size(); i += n)
+  {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '#')
+      return "holds '#', which starts a comment in a scene file";
+    if (c < 0x20 || c == 0x7f)
+      return "holds a control character";
+    if ((n = utf8_length(text, i)) == 0)
+      return "is not UTF-8";
+  }
+  return "";
 }
 
 std::string to_text(const Parameters::Value& v)
@@ -84,6 +128,8 @@ Parameters::Value parse_as(const Parameters::Value& like, const std::string& nam
         return false;
       throw std::invalid_argument("");
     default:
+      if (std::string why = unwritable(text); !why.empty())
+        throw InputError("parameter '" + name + "': the text " + why);
       return text;
     }
   }
@@ -212,12 +258,9 @@ std::vector<std::string> Parameters::parse(int argc, char* argv[], bool* help_re
     }
     if (arg.rfind("--", 0) != 0)
     {
-      // A PETSc option or its value; any other word would be silently ignored by PETSc
-      if (arg.rfind("-", 0) != 0 && !petsc_value_may_follow)
-        throw InputError("unexpected argument '" + arg + "'");
-      petsc_value_may_follow = arg.rfind("-", 0) == 0;
+      add_petsc_word(arg, petsc_value_may_follow, "argument");
+      petsc_value_may_follow = is_option_name(arg);
       rest.push_back(arg);
-      _petsc_arguments.push_back(arg);
       continue;
     }
     petsc_value_may_follow = false;
@@ -255,27 +298,48 @@ std::vector<std::string> Parameters::parse(int argc, char* argv[], bool* help_re
   return rest;
 }
 
+void Parameters::add_petsc_word(const std::string& word, bool value_may_follow,
+                                const std::string& where)
+{
+  // A PETSc option, or a value right after one; any other word would be silently ignored by
+  // PETSc (and a scene file could not place it)
+  if (word.empty() || (!is_option_name(word) && !value_may_follow))
+    throw InputError("unexpected " + where + " '" + word + "'");
+  if (std::string why = unwritable(word); !why.empty() || word.find_first_of(" \t") != word.npos)
+    throw InputError("PETSc " + where + " '" + word + "' "
+                     + (why.empty() ? "holds a space, which a scene file cannot hold" : why));
+  _petsc_arguments.push_back(word);
+}
+
 void Parameters::read_file(const std::string& path)
 {
+  // An ifstream opens a directory, and reads nothing from it
   std::ifstream in(path);
-  if (!in)
+  if (!in || std::filesystem::is_directory(path))
     throw InputError("cannot read scene file '" + path + "'");
+  read(in, path);
+}
+
+void Parameters::read(std::istream& in, const std::string& origin)
+{
   std::string line;
   for (int number = 1; std::getline(in, line); ++number)
   {
+    const std::string where = origin + ":" + std::to_string(number);
     line = trim(line.substr(0, line.find('#')));
     if (line.empty())
       continue;
     if (line[0] == '-')
     {
       std::istringstream words(line);
-      for (std::string word; words >> word;)
-        _petsc_arguments.push_back(word);
+      bool value_may_follow = false; // a line starts with an option's name
+      for (std::string word; words >> word; value_may_follow = is_option_name(word))
+        add_petsc_word(word, value_may_follow, where + ": PETSc word");
       continue;
     }
     const auto eq = line.find('=');
     if (eq == std::string::npos)
-      throw InputError(path + ":" + std::to_string(number) + ": expected 'name = value'");
+      throw InputError(where + ": expected 'name = value'");
     set(trim(line.substr(0, eq)), line.substr(eq + 1));
     _given.insert(trim(line.substr(0, eq)));
   }
@@ -376,6 +440,32 @@ nlohmann::json Parameters::to_json() const
   for (const auto& name : _order)
     std::visit([&](const auto& v) { j[name] = v; }, _entries.at(name).value);
   return j;
+}
+
+std::vector<double> Parameters::real_list(const std::string& text)
+{
+  std::vector<double> values;
+  std::stringstream items(text);
+  for (std::string item; std::getline(items, item, ',');)
+  {
+    const std::string word = trim(item);
+    std::size_t used = 0;
+    double v = NAN;
+    try
+    {
+      v = std::stod(word, &used);
+    }
+    catch (const std::logic_error&) // no number, or one out of a double's range
+    {
+    }
+    if (used == 0 || used != word.size() || !std::isfinite(v))
+      throw InputError("'" + word + "' in the list '" + text + "' is not a finite number");
+    values.push_back(v);
+  }
+  // getline drops an empty last item: "1,2," would read as 1, 2
+  if (values.empty() || trim(text).back() == ',')
+    throw InputError("the list '" + text + "' has an empty item");
+  return values;
 }
 
 std::string Parameters::positive(double v) { return v > 0 ? "" : "must be positive"; }

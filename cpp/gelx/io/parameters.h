@@ -64,6 +64,8 @@ public:
   /// Read `name = value` lines (`#` starts a comment) and lines of PETSc options
   /// (`-name [value]`, kept in petsc_arguments() for parse() to hand on). Throws InputError.
   void read_file(const std::string& path);
+  /// The same for a scene file's text; `origin` names it in messages.
+  void read(std::istream& in, const std::string& origin);
 
   /// The PETSc options given on the command line and in scene files, word by word in the
   /// order parse() met them.
@@ -89,6 +91,10 @@ public:
   /// The names of the parameters that the command line or a scene file set (parse()).
   const std::set<std::string>& given() const { return _given; }
 
+  /// A comma-separated list of reals ("0.1, 0.01"), every one finite. Throws InputError
+  /// saying what is wrong (an empty item, a word that is not a number).
+  static std::vector<double> real_list(const std::string& text);
+
   /// Common validity checks.
   static std::string positive(double v);
   static std::string non_negative(double v);
@@ -111,6 +117,7 @@ private:
                    const std::string& help, Check valid);
   void declare(const std::string& section, const std::string& name, Value value,
                const std::string& help, std::function<std::string(const Value&)> valid);
+  void add_petsc_word(const std::string& word, bool value_may_follow, const std::string& where);
   std::map<std::string, Entry> _entries;
   std::vector<std::string> _order;
   std::set<std::string> _given;

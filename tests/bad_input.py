@@ -55,6 +55,11 @@ CASES = {
         ("absurd_mesh_size", ["--h", "1e-9"], "the mesh would have at least 2e+27 cells"),
         ("mesh_of_other_height", ["--mesh", str(tall_geo)],
          "the mesh spans z from 0 to 3, but --height makes it 0 to 2"),
+        # refused when the Newton solver reads its options, before any step and any output (a
+        # whole run before, then the first step)
+        ("misspelt_option", ["--h", "0.5", "-newton_snes_rtoll", "1e-8"],
+         "no solver object read the option(s) -newton_snes_rtoll (misspelt? the solver of "
+         "prefix 'newton_' has read its options)"),
     ],
     "pyramid": [
         ("W_equal_L", ["--W", "8", "--L", "8"], "W must exceed the pyramid width L"),
@@ -65,6 +70,10 @@ CASES = {
         ("d_max_zero", ["--d_max", "0"], "'d_max' = 0: must be in (0, 1)"),
         ("d_max_one", ["--d_max", "1"], "'d_max' = 1: must be in (0, 1)"),
         ("unknown_law", ["--law", "ogden"], "'law' = ogden: must be nh, mr or le"),
+        # a transfinite mesh: no mesh size bounds it, the scene's cell count does (gmsh
+        # meshed until killed before)
+        ("absurd_cells", ["--cells", "100000"], "the mesh would have at least 4e+15 cells "
+         "(the scene's structured mesh)"),
     ],
     "inflation": [
         ("B_equal_A", ["--B", "1"], "B must exceed the inner radius A"),
@@ -120,11 +129,15 @@ CASES = {
         # 300 mm slab: the first critical shortening 73 % off (ran to the end before, rc 0)
         ("one_slab", ["--nz", "1"], "--nz 1 makes slabs of 300 mm, more than 3.5 times the "
          "section's thickness 4.7 mm: the strip's buckling is not resolved (use --nz 19"),
+        # 6 hexahedra a slab
+        ("absurd_nz", ["--nz", "100000000"], "the mesh would have at least 6e+08 cells "
+         "(the scene's structured mesh)"),
     ],
 }
 TWO_RANKS = {"block": ["missing_mesh", "dt_above_dt_max", "fieldsplit_not_mixed",
-                       "malformed_mesh", "absurd_mesh_size", "mesh_of_other_height"],
-             "pyramid": ["W_below_L"],
+                       "malformed_mesh", "absurd_mesh_size", "mesh_of_other_height",
+                       "misspelt_option"],
+             "pyramid": ["W_below_L", "absurd_cells"],
              "inflation": ["B_equal_A"], "buckling": ["ty_equal_tx"],
              "fiber_gel": ["cell_narrower_than_fiber", "phi_f_beyond_one"],
              "bistrip": ["unknown_layer_kind", "end_distance_beyond_L"]}
@@ -200,6 +213,11 @@ def parameters_from_help():
 def read_summary(folder):
     path = folder / "summary.json"
     return json.loads(path.read_text()) if path.exists() else {}
+
+
+def data_rows(steps_csv):
+    """The data rows of a steps.csv: 0 when it holds its header only or was not written"""
+    return max(len(steps_csv.read_text().strip().splitlines()) - 1, 0) if steps_csv.exists() else 0
 
 
 def typed(kind, text):
@@ -314,18 +332,18 @@ if scene == "block":
     rows = (out / "steps.csv").read_text().strip().splitlines()
     checks.require(f"forced_divergence: steps.csv has {len(rows) - 1} data row", len(rows) == 2)
 
-    # A misspelt option of a solver that has run ends the run at the first step's end, not
-    # after its last: one line, one row kept, a failed summary
-    out = work / "misspelt_option"
-    p = run(["--output", str(out), "--h", "0.5", "--dt", "0.05", "-newton_snes_rtoll", "1e-8"],
-            timeout=600)
-    one_error_line("misspelt_option", p, "no solver object read the option(s) "
-                   "-newton_snes_rtoll (misspelt?")
-    rows = (out / "steps.csv").read_text().strip().splitlines()
+    # MUMPS reads its options at the first factorisation: a misspelt one ends the run at the
+    # first step's end, not after its last (one row kept)
+    out = work / "misspelt_mumps_option"
+    p = run(["--output", str(out), "--h", "0.5", "--dt", "0.05", "-newton_mat_mumps_icntl_99",
+             "1"], timeout=600)
+    one_error_line("misspelt_mumps_option", p, "no solver object read the option(s) "
+                   "-newton_mat_mumps_icntl_99 (misspelt?")
     summary = read_summary(out)
-    checks.require(f"misspelt_option: stopped after the first step: {len(rows) - 1} data row "
-                   f"of 20, summary status {summary.get('status', '')[:50]!r}...",
-                   len(rows) == 2 and summary.get("status", "").startswith("failed: no solver"))
+    rows = data_rows(out / "steps.csv")
+    checks.require(f"misspelt_mumps_option: stopped after the first step: {rows} data row of "
+                   f"20, summary status {summary.get('status', '')[:50]!r}...",
+                   rows == 1 and summary.get("status", "").startswith("failed: no solver"))
 
 if scene == "bistrip":
     # A damped path whose time steps fall below -dynamics_min_step stops with one line and a

@@ -29,6 +29,17 @@ TaggedMesh layered_strip_mesh(MPI_Comm comm, const std::vector<Layer>& layers, d
   std::vector<double> ys = {-layers[0].thickness, 0};
   for (std::size_t k = 1; k < layers.size(); ++k)
     ys.push_back(ys.back() + layers[k].thickness);
+  auto inside = [&](const Layer& layer, std::size_t j) // interval j is under the layer
+  { return std::max(std::abs(xs[j]), std::abs(xs[j + 1])) <= layer.width / 2 + tol; };
+  auto across = [&](std::size_t j) { return int(j) == central ? cells.centre : cells.overhang; };
+  auto through = [&](const Layer& layer)
+  { return layer.prestretched ? cells.prestretched : cells.stressfree; };
+  // The hexahedra it makes, known before meshing (in reals: absurd counts overflow int)
+  double section_cells = 0;
+  for (const Layer& layer : layers)
+    for (std::size_t j = 0; j + 1 < xs.size(); ++j)
+      if (inside(layer, j))
+        section_cells += double(across(j)) * through(layer);
 
   auto build = [&]()
   {
@@ -58,17 +69,15 @@ TaggedMesh layered_strip_mesh(MPI_Comm comm, const std::vector<Layer>& layers, d
     for (std::size_t k = 0; k < layers.size(); ++k)
     {
       const Layer& layer = layers[k];
-      const int through = layer.prestretched ? cells.prestretched : cells.stressfree;
       for (std::size_t j = 0; j + 1 < xs.size(); ++j)
       {
-        if (std::max(std::abs(xs[j]), std::abs(xs[j + 1])) > layer.width / 2 + tol)
-          continue; // outside this layer
-        const int across = int(j) == central ? cells.centre : cells.overhang;
+        if (!inside(layer, j))
+          continue;
         const int p00 = point(k, j), p10 = point(k, j + 1), p11 = point(k + 1, j + 1),
                   p01 = point(k + 1, j);
         const int loop = gmsh::model::geo::addCurveLoop(
-            {line(p00, p10, across), line(p10, p11, through), line(p11, p01, across),
-             line(p01, p00, through)});
+            {line(p00, p10, across(j)), line(p10, p11, through(layer)),
+             line(p11, p01, across(j)), line(p01, p00, through(layer))});
         const int surface = gmsh::model::geo::addPlaneSurface({loop});
         gmsh::model::geo::mesh::setTransfiniteSurface(surface);
         gmsh::model::geo::mesh::setRecombine(2, surface);
@@ -97,7 +106,7 @@ TaggedMesh layered_strip_mesh(MPI_Comm comm, const std::vector<Layer>& layers, d
     gmsh::model::addPhysicalGroup(2, tops, 2);
     gmsh::model::setPhysicalName(2, 2, "moving");
   };
-  return mesh_gmsh_model(comm, build);
+  return mesh_gmsh_model(comm, build, {}, {}, section_cells * cells.along);
 }
 
 } // namespace gelx::scenes

@@ -356,7 +356,10 @@ TaggedMesh pyramid_mesh(MPI_Comm comm, const PyramidGeometry& g)
     }
   };
   const std::vector<int> mirror_axes = g.domain == "half" ? std::vector<int>{1} : std::vector<int>{};
-  return mesh_gmsh_model(comm, build, {}, mirror_axes);
+  // At least one block of cells^3 hexahedra at each tip level (a bound from below, for
+  // mesh_gmsh_model's refusal of a mesh that cannot fit)
+  const double fewest_cells = std::pow(double(g.cells), 3) * (g.tip_levels + 1);
+  return mesh_gmsh_model(comm, build, {}, mirror_axes, fewest_cells);
 }
 
 } // namespace gelx::scenes

@@ -158,6 +158,28 @@ std::string unread_options_of_set_up_solvers()
   return dashed_list(misspelt);
 }
 
+void refuse_unread_options_of(const std::string& prefix)
+{
+  const std::vector<std::string> read_when_set_up = {"snes_", "ksp_", "pc_", "ts_"};
+  std::vector<std::string> misspelt;
+  for (const auto& name : unread_option_names())
+  {
+    if (name.compare(0, prefix.size(), prefix) != 0 || name.find("view") != std::string::npos
+        || name.find("converged_reason") != std::string::npos
+        || name.find("_test_") != std::string::npos)
+      continue;
+    for (const auto& cls : read_when_set_up)
+      if (name.compare(prefix.size(), cls.size(), cls) == 0)
+      {
+        misspelt.push_back(name);
+        break;
+      }
+  }
+  if (!misspelt.empty())
+    throw InputError("no solver object read the option(s) " + dashed_list(misspelt)
+                     + " (misspelt? the solver of prefix '" + prefix + "' has read its options)");
+}
+
 void set_linear_solver_defaults(const std::string& prefix)
 {
   // The Krylov sets: a restart long enough for the few hundred iterations of a hard tangent,

@@ -65,6 +65,15 @@ std::string unused_options();
 /// made yet, and the views and converged reasons PETSc reads at the end of a solve, wait for
 /// unused_options().
 std::string unread_options_of_set_up_solvers();
+/// Throw InputError naming every option under `prefix` that the solver object of that prefix
+/// should have read when it read its options (SNESSetFromOptions, TSSetFromOptions: the
+/// `snes_`, `ksp_`, `pc_` and `ts_` options of it, its line search and its linear solver)
+/// and did not: a misspelt option is refused before the object's first solve, so before the
+/// first step. Left to unread_options_of_set_up_solvers(), after the first step: MUMPS'
+/// `mat_mumps_` options (read at the first factorisation), the split solvers of `fieldsplit`
+/// (made at the preconditioner's set-up), the views and converged reasons (read after a
+/// solve) and `_test_` options (read when the test runs).
+void refuse_unread_options_of(const std::string& prefix);
 
 /// The defaults of the linear solver with options `prefix`, from the named option set
 /// `-<prefix>linear_solver` (each option of a set is a default: any one can be overridden):

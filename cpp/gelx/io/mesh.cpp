@@ -167,10 +167,11 @@ std::string gmsh_error(const std::string& message)
 }
 
 /// Start gmsh (with `args` as its command line), let `build` create the model, mesh it in 3-D
-/// and read it; a model whose mesh cannot fit in `memory` bytes is refused before meshing.
-/// gmsh prints nothing: its errors come back in the exceptions (InputError).
+/// and read it; a model whose mesh cannot fit in `memory` bytes (a sized model's estimate, or
+/// the `known_cells` of a transfinite one) is refused before meshing. gmsh prints nothing: its
+/// errors come back in the exceptions (InputError).
 GmshData mesh_with_gmsh(std::vector<std::string> args, const std::function<void()>& build,
-                        double memory)
+                        double known_cells, double memory)
 {
   args.insert(args.begin(), "gelx");
   std::vector<char*> argv;
@@ -184,6 +185,7 @@ GmshData mesh_with_gmsh(std::vector<std::string> args, const std::function<void(
     build();
     const auto [cells, why] = fewest_cells_of_model();
     require_fits(cells, memory, why);
+    require_fits(known_cells, memory, "the scene's structured mesh");
     gmsh::model::mesh::generate(3);
 
     std::vector<std::size_t> node_tags;
@@ -291,14 +293,14 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
     throw InputError("mesh file '" + geo_file + "' not found");
   try
   {
-  std::vector<std::string> args;
-  for (auto& [name, value] : numbers)
-  {
-    // Every digit (std::to_string keeps 6 decimals: a value of 1e-7 would arrive as 0)
-    std::ostringstream text;
-    text << std::setprecision(17) << value;
-    args.insert(args.end(), {"-setnumber", name, text.str()});
-  }
+    std::vector<std::string> args;
+    for (auto& [name, value] : numbers)
+    {
+      // Every digit (std::to_string keeps 6 decimals: a value of 1e-7 would arrive as 0)
+      std::ostringstream text;
+      text << std::setprecision(17) << value;
+      args.insert(args.end(), {"-setnumber", name, text.str()});
+    }
     return mesh_gmsh_model(comm, [&]() { gmsh::open(geo_file); }, args, mirror_axes);
   }
   catch (const InputError& e) // on every rank (mesh_gmsh_model)
@@ -309,7 +311,7 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
 
 TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
                            const std::vector<std::string>& gmsh_args,
-                           const std::vector<int>& mirror_axes)
+                           const std::vector<int>& mirror_axes, double known_cells)
 {
   TimedStage timing("mesh");
   const int rank = dolfinx::MPI::rank(comm);
@@ -321,7 +323,9 @@ TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
   {
     try
     {
-      data = mesh_with_gmsh(gmsh_args, build, memory);
+      // each mirror image doubles the cells
+      data = mesh_with_gmsh(gmsh_args, build, std::ldexp(known_cells, static_cast<int>(mirror_axes.size())),
+                            memory);
       for (int axis : mirror_axes)
         mirror(data, axis);
     }

@@ -47,10 +47,13 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
 /// communicate. `mirror_axes`: reflect the mesh in the plane x_k = 0 for each k in turn and
 /// merge it with its image (the facets on the plane become interior and lose their tags): the
 /// larger domain of a symmetry-reduced model, to show that the reduction does not change the
-/// answer. Collective.
+/// answer. `known_cells`: the number of cells `build` makes (before mirroring), or a lower
+/// bound, when the scene knows it: a transfinite mesh, whose size no mesh-size option bounds,
+/// is then refused before meshing when it cannot fit in memory, as a sized model is (a
+/// transfinite model's own size is not known to gmsh before meshing). Collective.
 TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
                            const std::vector<std::string>& gmsh_args = {},
-                           const std::vector<int>& mirror_axes = {});
+                           const std::vector<int>& mirror_axes = {}, double known_cells = 0);
 
 /// The smallest box that holds the mesh: {lower corner, upper corner}. Collective.
 std::array<std::array<double, 3>, 2> bounding_box(const dolfinx::mesh::Mesh& mesh);

@@ -383,6 +383,7 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSSetPostStep(_ts, post_step));
   GELX_PETSC(TSSetPreStep(_ts, gelx::pre_step));
   GELX_PETSC(TSSetFromOptions(_ts));
+  refuse_unread_options_of(prefix);
   reject_failed_line_searches(_ts);
   PetscBool bdf;
   GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSBDF, &bdf));

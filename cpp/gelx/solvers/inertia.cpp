@@ -220,6 +220,7 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSSetPreStage(_ts, gelx::pre_stage));
   GELX_PETSC(TSSetPostStep(_ts, post_step));
   GELX_PETSC(TSSetFromOptions(_ts));
+  refuse_unread_options_of(prefix);
   reject_failed_line_searches(_ts);
   PetscBool alpha2;
   GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSALPHA2, &alpha2));

@@ -241,6 +241,7 @@ void NewtonSolver::set_up(NonlinearSystem& system)
   GELX_PETSC(SNESSetUpdate(_snes, commit_iterate));
   system.configure(_snes);
   GELX_PETSC(SNESSetFromOptions(_snes));
+  refuse_unread_options_of(_prefix);
   KSP ksp;
   GELX_PETSC(SNESGetKSP(_snes, &ksp));
   define_fields_if_split(ksp, system);

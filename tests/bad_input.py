@@ -243,6 +243,8 @@ first = reals[0]
 nan_file, garbled_file = work / "nan.scene", work / "garbled.scene"
 nan_file.write_text(f"# a scene file\n{first} = nan\n")
 garbled_file.write_text(f"{first} = {parameters[first][1]}\nthis line has no equals sign\n")
+bad_source_file = work / "bad_source.scene"
+bad_source_file.write_text("source forms/materials.py = 0123abc\n")
 cases += [
     ("trailing_garbage", [f"--{first}", "1.5x"], f"'{first}': '1.5x' is not a finite number"),
     ("real_overflow", [f"--{first}", "1e999"], f"'{first}': '1e999' is not a finite number"),
@@ -253,6 +255,9 @@ cases += [
     ("missing_scene_file", ["--scene", str(work / "no-such.scene")], "cannot read scene file"),
     ("garbled_scene_file", ["--scene", str(garbled_file)],
      f"{garbled_file}:2: expected 'name = value'"),
+    # the record of what a run was computed from (gelx/io/sources.h) takes a whole SHA-256
+    ("short_source_hash", ["--scene", str(bad_source_file)],
+     f"{bad_source_file}:1: expected 'source PATH = SHA-256 in 64 hex digits'"),
     ("scene_file_is_a_folder", ["--scene", str(work)], "cannot read scene file"),
     # A word that is neither a parameter, a PETSc option nor an option's value: PETSc would
     # ignore it, and scene.txt could not replay it (tests/fuzz found "-2.5" after --offset)

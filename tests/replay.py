@@ -7,9 +7,16 @@ every parameter that --help lists (but --output and --restart, which say where a
 A control run from the same file with one parameter changed after it on the command line
 must differ: the comparison can fail, and the command line overrides the file.
 
+scene.txt also records what the run was computed from, by content: the SHA-256 of every form
+file the kernels were compiled with and of the mesh file, each checked here against the file in
+the tree. A replay whose record has another forms/materials.py (a law edited since), lacks one
+of the program's form files, or names a mesh file edited since is refused in one line with no
+results written.
+
 usage: replay.py MPIEXEC RANKS EXE OUT_DIR CHANGE_NAME CHANGE_VALUE [scene options...]
 """
 import csv
+import hashlib
 import json
 import pathlib
 import re
@@ -75,4 +82,55 @@ checks.require(f"control with --{change_name} {change_value} after the file: ste
 checks.require(f"control: summary.json's parameters say {change_name} = "
                f"{control_summary['parameters'][change_name]}",
                str(control_summary["parameters"][change_name]) == change_value)
+
+# What the run was computed from, by content: every form file the build compiles the kernels
+# with (forms/NAME.py, the modules forms/_*.py and materials.py) and the mesh file it read, each
+# with the SHA-256 of the file in this tree, computed here
+source_tree = pathlib.Path(__file__).resolve().parents[1]
+recorded = dict(re.findall(r"^source (\S+) = ([0-9a-f]{64})$", scene, re.M))
+modules = {f"forms/{p.name}" for p in (source_tree / "forms").glob("_*.py")} | {"forms/materials.py"}
+forms = {p for p in recorded if p.startswith("forms/")}
+checks.require(f"scene.txt records the form modules {sorted(modules)} and the scene's form "
+               f"files {sorted(forms - modules)}", modules < forms)
+for path, digest in recorded.items():
+    file = source_tree / path if path.startswith("forms/") else pathlib.Path(path)
+    actual = hashlib.sha256(file.read_bytes()).hexdigest()
+    checks.require(f"recorded SHA-256 of {path} is the file's ({digest[:12]}..., {actual[:12]}...)",
+                   digest == actual)
+
+
+def refused(name, scene_text, expect):
+    """A replay from `scene_text` ends in one line naming `expect`, exit code 1, no results"""
+    file = out / f"{name}.txt"
+    file.write_text(scene_text)
+    folder = out / name
+    p = subprocess.run([mpiexec, "-q", "-np", ranks, exe, "--output", str(folder), "--scene",
+                        str(file)],
+                       capture_output=True, text=True)
+    lines = p.stderr.splitlines()
+    checks.require(f"{name}: exit code {p.returncode}, stderr {lines}, results "
+                   f"{'written' if folder.exists() else 'not written'}",
+                   p.returncode == 1 and len(lines) == 1 and expect in lines[0]
+                   and not folder.exists())
+
+
+# A replay after a law was edited (the record's materials.py differs from the one built in)
+edited = "0" * 64
+refused("replay_other_law", re.sub(r"^(source forms/materials\.py = )\S+", rf"\g<1>{edited}",
+                                   scene, flags=re.M),
+        "was computed with another forms/materials.py")
+# A record that lacks one of the forms this program was built from
+form = sorted(forms - modules)[0]
+refused("replay_form_not_recorded", re.sub(rf"^source {re.escape(form)} = .*\n", "", scene,
+                                           flags=re.M),
+        f"was built from {form}, which the scene file's run does not record")
+# A mesh file whose content changed since the run read it
+if "mesh" in declared:
+    mesh = re.search(r"^mesh = (.*)$", scene, re.M)[1]
+    copy = out / "mesh_copy.geo"
+    copy.write_bytes(pathlib.Path(mesh).read_bytes())
+    meshed = run("mesh_copy", "--scene", str(first / "scene.txt"), "--mesh", str(copy))
+    copy.write_bytes(copy.read_bytes() + b"// edited after the run\n")
+    refused("replay_edited_mesh", (meshed / "scene.txt").read_text(),
+            f"'{copy}' is not the file the scene file's run read")
 checks.finish()

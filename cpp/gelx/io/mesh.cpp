@@ -1,6 +1,7 @@
 #include <gelx/io/mesh.h>
 #include <gelx/common/timing.h>
 #include <gelx/io/parameters.h>
+#include <gelx/io/sources.h>
 
 #include <dolfinx/common/MPI.h>
 #include <dolfinx/fem/CoordinateElement.h>
@@ -291,6 +292,7 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
 {
   if (!std::filesystem::is_regular_file(geo_file))
     throw InputError("mesh file '" + geo_file + "' not found");
+  record_input_file(geo_file);
   try
   {
     std::vector<std::string> args;

@@ -340,6 +340,16 @@ void Parameters::read(std::istream& in, const std::string& origin)
     const auto eq = line.find('=');
     if (eq == std::string::npos)
       throw InputError(where + ": expected 'name = value'");
+    if (line.rfind("source ", 0) == 0)
+    {
+      // What the recorded run was computed from (sources.h): `source PATH = SHA256`
+      const std::string path = trim(line.substr(7, eq - 7)), hash = trim(line.substr(eq + 1));
+      if (path.empty() || hash.size() != 64
+          || hash.find_first_not_of("0123456789abcdef") != std::string::npos)
+        throw InputError(where + ": expected 'source PATH = SHA-256 in 64 hex digits'");
+      _recorded_sources[path] = hash;
+      continue;
+    }
     set(trim(line.substr(0, eq)), line.substr(eq + 1));
     _given.insert(trim(line.substr(0, eq)));
   }

@@ -61,8 +61,10 @@ public:
   /// also for a word that is neither (PETSc would ignore it silently).
   std::vector<std::string> parse(int argc, char* argv[], bool* help_requested = nullptr);
 
-  /// Read `name = value` lines (`#` starts a comment) and lines of PETSc options
-  /// (`-name [value]`, kept in petsc_arguments() for parse() to hand on). Throws InputError.
+  /// Read `name = value` lines (`#` starts a comment), lines of PETSc options
+  /// (`-name [value]`, kept in petsc_arguments() for parse() to hand on) and the record of
+  /// what a run was computed from, `source PATH = SHA256` (kept in recorded_sources(); see
+  /// gelx/io/sources.h). Throws InputError.
   void read_file(const std::string& path);
   /// The same for a scene file's text; `origin` names it in messages.
   void read(std::istream& in, const std::string& origin);
@@ -88,6 +90,12 @@ public:
   /// real, integer, flag or text, and help text) for --help.
   std::string table(bool with_help) const;
   nlohmann::json to_json() const;
+  /// The `source PATH = SHA256` lines of the scene files read: path -> SHA-256.
+  const std::map<std::string, std::string>& recorded_sources() const
+  {
+    return _recorded_sources;
+  }
+
   /// The names of the parameters that the command line or a scene file set (parse()).
   const std::set<std::string>& given() const { return _given; }
 
@@ -121,6 +129,7 @@ private:
   std::map<std::string, Entry> _entries;
   std::vector<std::string> _order;
   std::set<std::string> _given;
+  std::map<std::string, std::string> _recorded_sources;
   std::vector<std::string> _petsc_arguments;
 };
 

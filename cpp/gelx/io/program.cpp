@@ -1,5 +1,6 @@
 #include <gelx/io/program.h>
 #include <gelx/io/checkpoint.h>
+#include <gelx/io/sources.h>
 #include <gelx/solvers/path.h>
 #include <gelx/common/petsc_utils.h>
 #include <gelx/common/timing.h>
@@ -140,7 +141,11 @@ ResultsWriter& Run::results(std::shared_ptr<const dolfinx::mesh::Mesh> mesh)
         << " MPI rank(s). Run it again with\n#   ./gelx run SCENE --scene scene.txt --np "
         << dolfinx::MPI::size(_comm) << "\n# (SCENE the folder in demos/ that builds gelx-"
         << _scene << "; the scene's own solver defaults are not listed: it sets them again)\n"
-        << _parameters.scene_file({"output", "restart"});
+        << _parameters.scene_file({"output", "restart"})
+        << "# What the run was computed from, by content (SHA-256): --scene refuses a program "
+           "built\n# from other forms, or an input file that has changed\n";
+  for (const auto& [path, hash] : run_sources())
+    scene << "source " << path << " = " << hash << "\n";
   _results->write_text("scene.txt", scene.str());
   return *_results;
 }
@@ -171,6 +176,7 @@ StepObserver Run::checkpoints()
       throw std::logic_error("Run::checkpoints: the path was not started with start_path");
     nlohmann::json record = {{"parameters", _parameters.to_json()},
                              {"petsc_options", _given_petsc_options},
+                             {"sources", run_sources()},
                              {"summary", summary}};
     if (_results)
       record["results"] = _results->progress();
@@ -195,6 +201,7 @@ nlohmann::json Run::local_record() const
   nlohmann::json record = summary;
   record["wall_time"] = elapsed();
   record["petsc_options"] = petsc_options();
+  record["sources"] = run_sources();
   if (!_restart_from.empty())
     record["restarted_from"] = {{"step", _restart_record.at("path").at("step")},
                                 {"ranks", _restart_record.at("ranks")}};
@@ -246,6 +253,11 @@ int run_program(int argc, char* argv[], const std::string& name, Parameters& par
   {
     rest = parameters.parse(argc, argv, &help);
     checkpoint = restart_checkpoint(parameters);
+    if (!checkpoint.empty())
+      expect_sources(Checkpoints::read_record(checkpoint).at("run").value("sources", Sources{}),
+                     "the checkpoint's run", name);
+    else
+      expect_sources(parameters.recorded_sources(), "the scene file's run", name);
   }
   catch (const InputError& e)
   {

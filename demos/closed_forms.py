@@ -101,8 +101,15 @@ class GelHeating:
 
     @classmethod
     def from_parameters(cls, p):
-        """From the parameters of a fiber_gel summary.json (the run's input)."""
-        return cls(p["n_nu_vm"], p["phi_i"], p["alpha0"], p["T_i"], p["T_f"])
+        """From the parameters of a fiber_gel summary.json (the run's input): chi(T) fitted to
+        phi_i and alpha0 (--chi fit), or given (--chi A,B), when phi_i and alpha0 are the free
+        gel's states at T_i and T_f (Eq. 4.7 inverted)."""
+        if p.get("chi", "fit") == "fit":
+            return cls(p["n_nu_vm"], p["phi_i"], p["alpha0"], p["T_i"], p["T_f"])
+        chi_A, chi_B = (float(x) for x in p["chi"].split(","))
+        phi_i = phi_free_swelling(chi_A + chi_B * p["T_i"], p["n_nu_vm"])
+        phi_f = phi_free_swelling(chi_A + chi_B * p["T_f"], p["n_nu_vm"])
+        return cls(p["n_nu_vm"], phi_i, (phi_i / phi_f)**(1 / 3), p["T_i"], p["T_f"])
 
     def chi(self, T):
         return self.chi_A + self.chi_B * T

@@ -101,6 +101,9 @@ CASES = {
         ("fiber_longer_than_cell", ["--l", "40", "--L", "30"], "l must lie in [d, L]"),
         ("full_cell_with_rod", ["--cell", "full"], "needs a fiber shorter than the cell"),
         ("order_three", ["--order", "3"], "must be 1 or 2"),
+        ("chi_one_number", ["--chi", "0.5"], "'chi' = 0.5: must be 'fit' or two numbers 'A,B'"),
+        ("chi_with_alpha0", ["--chi", "-0.7,0.0043", "--alpha0", "0.7"],
+         "--chi gives chi(T), from which phi_i and alpha0 follow: give neither with it"),
     ],
     "flory_rehner": [
         ("negative_n_nu_vm", ["--n_nu_vm", "-0.1"], "every value must be positive"),

@@ -18,6 +18,7 @@
 #include <gelx/systems/problem.h>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -27,7 +28,8 @@ namespace gelx::scenes
 /// The gel and its contraction, after thesis section 4.4.2 steps (1)-(5): the free gel
 /// contracts isotropically by alpha0 from phi_i at T_i to phi_f = phi_i / alpha0^3 at T_f,
 /// which fixes chi_i = chi(phi_i) and chi_f = chi(phi_f) by Eq. 4.7 and the line
-/// chi = chi_A + chi_B T through (T_i, chi_i) and (T_f, chi_f).
+/// chi = chi_A + chi_B T through (T_i, chi_i) and (T_f, chi_f). Or the other way round: chi(T)
+/// given (set_chi), phi_i and alpha0 are the free gel's states at T_i and T_f.
 struct GelContraction
 {
   double n = 0.01;     ///< N nu / V_m
@@ -38,12 +40,19 @@ struct GelContraction
 
   /// Eq. 4.13 inverted: the free gel's volume fraction at T_f.
   double phi_f() const;
-  /// Steps (1)-(2): chi_B (1/K) and chi_A of chi = chi_A + chi_B T.
+  /// chi_B (1/K) and chi_A of chi = chi_A + chi_B T: given (set_chi), or steps (1)-(2).
   std::pair<double, double> chi_line() const;
+  /// Take chi(T) = chi_A + chi_B T as given, and phi_i and alpha0 from it: the free gel's volume
+  /// fractions at T_i and T_f (Eq. 4.7 inverted). Throws InputError where chi(T) has no
+  /// free-swelling state. Call after n, T_i and T_f are set.
+  void set_chi(double chi_A, double chi_B);
   /// The limit of a fiber of no thickness through the cell (L = l, D/d -> infinity): the
   /// transverse contraction ratio of the uniaxially constrained gel without prestrain (Eq. 4.14,
   /// phi_i = phi'_i = phi_c), from the theory library.
   double uniaxial_alpha_perp() const;
+
+private:
+  std::optional<std::pair<double, double>> _given_chi; ///< {chi_B, chi_A}, when set_chi gave it
 };
 
 /// Contraction ratios of the cell: deformed over reference edge length (Eq. 4.21: the lattice

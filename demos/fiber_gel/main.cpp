@@ -9,7 +9,8 @@
 // cell when l = L) in a Flory-Rehner gel (Eq. 4.28), unit cell D x D x L (Fig. 4.4), the fibers
 // bonded to the gel. The gel is stress free in its swollen reference state phi_i at T_i; as the
 // temperature rises to T_f, chi = chi_A + chi_B T grows so that a free gel would contract by
-// alpha0 in every direction (§4.4.2 steps (1)-(5)); the fibers hinder the contraction along
+// alpha0 in every direction (§4.4.2 steps (1)-(5); or chi(T) is given, --chi A,B, and phi_i
+// and alpha0 follow from it); the fibers hinder the contraction along
 // them. By symmetry 1/8 of the cell is modelled (Fig. 4.8): rollers on the three mirror planes,
 // the three outer faces plane with a free normal displacement each (zero macro stress), which is
 // what the periodic conditions of Eq. 4.21-4.22 reduce to; `--cell full` solves the whole cell
@@ -58,10 +59,31 @@ int main(int argc, char* argv[])
            "polymer volume fraction of the reference state at T_i", unit_interval);
   prm.bind("material", "alpha0", gel.alpha0,
            "free contraction ratio from T_i to T_f (Eq. 4.13)", unit_interval);
+  std::string chi = "fit";
+  prm.bind("material", "chi", chi,
+           "chi(T) = A + B T (B in 1/K) as 'A,B'; then phi_i and alpha0 are the free gel's states "
+           "at T_i and T_f and may not be set. 'fit': the line through the free gel's chi at "
+           "phi_i (T_i) and at phi_i/alpha0^3 (T_f), section 4.4.2",
+           [](const std::string& text)
+           {
+             if (text == "fit")
+               return std::string();
+             try
+             {
+               return gelx::Parameters::real_list(text).size() == 2
+                          ? std::string()
+                          : std::string("must be 'fit' or two numbers 'A,B'");
+             }
+             catch (const gelx::InputError& e)
+             {
+               return std::string(e.what());
+             }
+           });
   prm.bind("loading", "T_i", gel.T_i, "initial temperature (K)", gelx::Parameters::positive);
   prm.bind("loading", "T_f", gel.T_f,
-           "final temperature (K): chi(T) is fitted so that the free gel contracts by alpha0 "
-           "at T_f, so T_f places that state on the temperature axis",
+           "final temperature (K): with --chi fit, chi(T) is fitted so that the free gel "
+           "contracts by alpha0 at T_f (T_f only places that state on the temperature axis); "
+           "with --chi A,B the state at T_f is the one chi(T_f) gives",
            gelx::Parameters::positive);
   stepping.bind(prm);
 
@@ -69,10 +91,18 @@ int main(int argc, char* argv[])
   {
     g.check();
     stepping.check();
-    if (gel.phi_f() >= 1)
-      throw gelx::InputError("phi_i / alpha0^3 must stay below 1 (the contracted gel's phi)");
     if (gel.T_f == gel.T_i)
       throw gelx::InputError("T_f must differ from T_i");
+    if (chi != "fit")
+    {
+      if (prm.given().count("phi_i") || prm.given().count("alpha0"))
+        throw gelx::InputError("--chi gives chi(T), from which phi_i and alpha0 follow: give "
+                               "neither with it");
+      const std::vector<double> line = gelx::Parameters::real_list(chi);
+      gel.set_chi(line[0], line[1]);
+    }
+    if (gel.phi_f() >= 1)
+      throw gelx::InputError("phi_i / alpha0^3 must stay below 1 (the contracted gel's phi)");
 
     // 2. The cell: mesh, gel, clamped fiber, face constraints with macro unknowns
     gelx::scenes::FiberGelCell cell(run.comm(), g, gel, order);
@@ -81,6 +111,7 @@ int main(int argc, char* argv[])
                    {"num_cells", cell.mesh().mesh->topology().index_map(3)->size_global()},
                    {"chi_A", chi_A},
                    {"chi_B", chi_B},
+                   {"phi_i", gel.phi_i},
                    {"phi_f", gel.phi_f()},
                    {"theory_alpha0", gel.alpha0},
                    {"theory_uniaxial_alpha_perp", gel.uniaxial_alpha_perp()},

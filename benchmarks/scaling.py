@@ -1,5 +1,5 @@
 """How time and memory grow with the number of unknowns N, for the direct and the iterative
-linear solvers (the option sets of -newton_linear_solver, README.md "Linear solvers").
+linear solvers (the option sets of -newton_linear_solver, docs/runner.md "Linear solvers").
 
 Two problems, each one short load path at growing sizes, on 2 ranks:
 - block: the compressible P2 block (K/G = 10), stretched to 1.1 and twisted by 10 degrees in

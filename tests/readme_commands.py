@@ -25,7 +25,7 @@ source, build, mpiexec, out = (pathlib.Path(a) for a in sys.argv[1:5])
 checks = Checks()
 shutil.rmtree(out, ignore_errors=True)
 readmes = [source / "README.md"] + sorted((source / "demos").glob("*/README.md")) \
-    + [source / "forms" / "README.md"]
+    + [source / "forms" / "README.md"] + sorted((source / "docs").glob("*.md"))
 
 
 def commands(readme):
@@ -67,7 +67,7 @@ for readme in readmes:
         if ranks is None:
             print(f"SKIP  {where}: {exe}")
             continue
-        if any(w in ("N", "OUT") or "$" in w for w in words) or "my_peo.scene" in line:
+        if any(w in ("N", "OUT", "NAME") or "$" in w for w in words) or "my_peo.scene" in line:
             print(f"SKIP  {where}: a placeholder or a file the reader supplies")
             continue
         checks.require(f"{where}: the executable {exe.relative_to(build)} is built", exe.is_file())

@@ -7,8 +7,9 @@ cells ParaView names by coordinates (the least and greatest x + 2y + 3z) equal t
 the node or cell of those coordinates. Fails when pvbatch is missing.
 
 usage: paraview_dataset.py OUTPUT_DIR [--file fields.xdmf] [--steps-csv] ARRAY...
-  ARRAY   an array the scene writes; NAME_* stands for the eight outputs of a stress tensor
-          (NAME_xx, _yy, _zz, _yz, _xz, _xy, von Mises _vm and pressure _p)
+  ARRAY   an array the scene writes; NAME_* stands for the outputs of a stress tensor: NAME
+          itself (nine components, which ParaView must take as a tensor, equal to the six
+          component arrays) and NAME_xx, _yy, _zz, _yz, _xz, _xy, von Mises _vm and pressure _p
   --steps-csv   the time steps are the rows of the folder's steps.csv (one field step per row)
 """
 import argparse
@@ -34,7 +35,8 @@ cli.add_argument("arrays", nargs="+")
 cli.add_argument("--file", default="fields.xdmf")
 cli.add_argument("--steps-csv", action="store_true")
 args = cli.parse_args()
-expected = [f"{a[:-2]}_{c}" for a in args.arrays if a.endswith("_*") for c in TENSOR_OUTPUTS] \
+tensors = [a[:-2] for a in args.arrays if a.endswith("_*")]
+expected = [f"{t}_{c}" for t in tensors for c in TENSOR_OUTPUTS] + tensors \
     + [a for a in args.arrays if not a.endswith("_*")]
 checks = Checks()
 
@@ -74,6 +76,15 @@ for label, step in (("first", 0), ("last", -1)):
                    (seen["points"], seen["cells"]) == (len(x), len(cells)))
     checks.require(f"{label} step: arrays {sorted(seen['arrays'])} are exactly {sorted(expected)}",
                    sorted(seen["arrays"]) == sorted(expected))
+    checks.require(f"{label} step: ParaView takes {seen['tensors']} as tensors, the scene "
+                   f"writes {tensors}", sorted(seen["tensors"]) == sorted(tensors))
+    for tensor in tensors:
+        # the tensor row by row: xx xy xz / yx yy yz / zx zy zz
+        whole = series.field(tensor, step).reshape(-1, 9)
+        for c, k in zip(TENSOR_OUTPUTS, (0, 4, 8, 5, 2, 1)):
+            checks.absolute(f"{label} step: {tensor}'s component {k} against {tensor}_{c}",
+                            np.abs(whole[:, k] - series.field(f"{tensor}_{c}", step).ravel()).max(),
+                            0.0, 0.0)
     for name in sorted(set(expected) & set(seen["arrays"])):
         values = series.field(name, step)
         values = values.reshape(len(values), -1)

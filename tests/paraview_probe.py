@@ -1,7 +1,8 @@
 """pvbatch script: what ParaView's own XDMF reader makes of a fields.xdmf, as one JSON line on
 stdout (prefixed 'PROBE '): the reader, the time steps, and at the first and last step the data
-set's class, its points and cells, each array's centring, components and range, and each array's
-values at four named places (the points and cells of least and greatest x + 2y + 3z).
+set's class, its points and cells, each array's centring, components and range, each array's
+values at four named places (the points and cells of least and greatest x + 2y + 3z), and the
+arrays ParaView takes as tensors.
 
 usage: pvbatch paraview_probe.py FIELDS_XDMF
 """
@@ -58,5 +59,8 @@ for label, t in (("first", times[0]), ("last", times[-1])):
         steps[label].update(points=data.GetNumberOfPoints(), cells=data.GetNumberOfCells(),
                             arrays={**arrays(data.GetPointData(), "Node"),
                                     **arrays(data.GetCellData(), "Cell")},
-                            named=named(data))
+                            named=named(data),
+                            # the arrays ParaView takes as tensors (its tensor filters' input)
+                            tensors=[a.GetTensors().GetName() for a in
+                                     (data.GetPointData(), data.GetCellData()) if a.GetTensors()])
 print("PROBE " + json.dumps({"reader": reader.GetXMLName(), "times": times, "steps": steps}))

@@ -141,9 +141,9 @@ void FieldSeries::write(double t,
     dolfinx::io::HDF5Interface::write_dataset(h5, "/" + f->name, values.data(),
                                               {first, first + rows}, {total, width}, parallel,
                                               false);
-    static const char* kinds[] = {"Scalar", "Vector", "Tensor"};
-    grid << "<Attribute Name=\"" << f->name << "\" AttributeType=\""
-         << kinds[f->function_space()->element()->value_shape().size()] << "\" Center=\""
+    // By width: a blocked space's value shape is flat, (9) for a 3x3 tensor
+    const char* kind = width == 1 ? "Scalar" : width == 9 ? "Tensor" : "Vector";
+    grid << "<Attribute Name=\"" << f->name << "\" AttributeType=\"" << kind << "\" Center=\""
          << (cells ? "Cell" : "Node") << "\"><DataItem Dimensions=\"" << total << " " << width
          << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/" << f->name
          << "</DataItem></Attribute>";

@@ -54,6 +54,15 @@ CellField::CellField(const std::string& name,
     _fields.back()->name = n;
     _outputs.push_back(_fields.back());
   }
+  if (_expression->value_size() == 9)
+  {
+    // The whole tensor, row by row: ParaView reads it as a tensor (XDMF AttributeType Tensor),
+    // for its tensor filters and glyphs
+    _tensor = std::make_shared<dolfinx::fem::Function<double>>(
+        lagrange_space(_expression->mesh(), 0, 9));
+    _tensor->name = name;
+    _outputs.push_back(_tensor);
+  }
 }
 
 void CellField::update()
@@ -87,6 +96,9 @@ void CellField::update()
       _fields[k]->x()->mutable_array()[dof] = components[k];
     _fields[6]->x()->mutable_array()[dof] = std::sqrt(1.5 * dev2);
     _fields[7]->x()->mutable_array()[dof] = p;
+    const std::int32_t block = _tensor->function_space()->dofmap()->cell_dofs(c)[0];
+    for (int k = 0; k < 9; ++k)
+      _tensor->x()->mutable_array()[9 * block + k] = values(c, k);
   }
 }
 

@@ -31,10 +31,10 @@ lagrange_space(std::shared_ptr<const dolfinx::mesh::Mesh> mesh, int degree, int 
 
 /// Cell-wise (DG0) output of a UFL Expression evaluated at the cell midpoints.
 ///
-/// A scalar expression gives one field NAME. A 3x3 tensor (the Cauchy stress) gives scalar
-/// fields ParaView plots directly: its six components NAME_xx, NAME_yy, NAME_zz, NAME_yz,
-/// NAME_xz, NAME_xy, the von Mises stress NAME_vm = sqrt(3/2 s:s) and the pressure
-/// NAME_p = -tr/3.
+/// A scalar expression gives one field NAME. A 3x3 tensor (the Cauchy stress) gives the tensor
+/// NAME (nine components, row by row, which ParaView reads as a tensor) and scalar fields
+/// ParaView plots directly: its six components NAME_xx, NAME_yy, NAME_zz, NAME_yz, NAME_xz,
+/// NAME_xy, the von Mises stress NAME_vm = sqrt(3/2 s:s) and the pressure NAME_p = -tr/3.
 class CellField
 {
 public:
@@ -49,6 +49,7 @@ public:
 private:
   std::shared_ptr<const dolfinx::fem::Expression<double>> _expression;
   std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _fields;
+  std::shared_ptr<dolfinx::fem::Function<double>> _tensor; ///< a 3x3 expression's, or null
   std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>> _outputs;
 };
 
@@ -70,7 +71,7 @@ private:
 /// _vm for von Mises and _p for the pressure -tr/3; tests/vocabulary.py checks every scene's
 /// output against this list):
 /// - displacement (mm, or the scene's length unit; at the nodes)
-/// - cauchy_stress (MPa, or the scene's stress unit; per cell)
+/// - cauchy_stress (MPa, or the scene's stress unit; per cell; the 3x3 tensor and its outputs)
 /// - energy_density (strain energy per reference volume; per cell)
 /// - contact_status (1 in contact, 0 free), contact_gap (length), contact_force (nodal force;
 ///   at the candidate nodes of a contact)

@@ -43,6 +43,10 @@ void BistripAnalysis::bind(Parameters& prm)
            Parameters::one_of({"dynamics", "inertia", "explicit", "arclength"}));
   prm.bind("analysis", "max_steps", max_steps, "arc-length steps at most",
            Parameters::at_least_one);
+  prm.bind("analysis", "settle_time", settle_time,
+           "after the path, the first-order flow at c = 1/s with the end held this long "
+           "(s; 0: none): towards a static equilibrium without leaving a metastable state",
+           Parameters::non_negative);
   prm.bind("analysis", "equilibria", equilibria,
            "equilibria to seek by deflation at the final end distance (0: none)",
            Parameters::non_negative);
@@ -64,8 +68,9 @@ void BistripAnalysis::check(const BistripParameters& p) const
     throw InputError("equilibria need the buckling modes for guesses: --seed mode");
   if (bonding != "instant" && (seed != "random" || method != "dynamics"))
     throw InputError("--bonding " + bonding + " needs --seed random and --method dynamics");
-  if (return_distance > 0 && method == "arclength")
-    throw InputError("return_distance needs --method dynamics, inertia or explicit");
+  if ((return_distance > 0 || settle_time > 0) && method == "arclength")
+    throw InputError("return_distance and settle_time need --method dynamics, inertia or "
+                     "explicit");
   if (noise > 0 && seed != "mode")
     throw InputError("--noise adds to a seeded mode: --seed mode");
   if (seed_mode > modes)

@@ -53,6 +53,11 @@ struct BistripAnalysis
   double noise = 0;
   /// The generator's seed of the random imperfection (--seed random, or --noise)
   int random_seed = 1;
+  /// After the path, the first-order flow c M u' + R(u) = 0 at c = 1/s with the end held,
+  /// for this long (s; 0: none): a gradient flow from where the path ended, which keeps the
+  /// perversions of a metastable state and lets a transient one go, settling towards a static
+  /// equilibrium (options -settle_dynamics_)
+  double settle_time = 0;
   /// Equilibria to seek by deflation at the final end distance, besides the path's (0: none)
   int equilibria = 0;
   /// The deflation's guesses: the path's state plus or minus each buckling mode at this

@@ -133,15 +133,17 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
     checkpoints(step, state);
   };
   auto drive = [&](std::function<void(double)> load, double dissipated_before,
-                   const std::string& key, const std::string& prefix)
+                   const std::string& key, const std::string& prefix, bool inertia)
   {
     ProgressLine progress(run.comm(), progress_options);
     auto observe = [&](const DynamicsRecord& r, const DynamicsSummary& so_far, double end_time)
     {
       // The flow's kinetic energy is a diagnostic of the regularised velocity, no term of
       // its balance; with inertia it is one
+      // A leg with the end held has no travel to output by: its every tenth step then
+      const bool held = key == "settle_dynamics" && r.step.step % 10 == 0;
       record.step_done(r.to_json(), dissipated_before + r.dissipated_energy,
-                       inertia ? r.kinetic_energy : 0.0, r.time >= end_time - 1e-12);
+                       inertia ? r.kinetic_energy : 0.0, held || r.time >= end_time - 1e-12);
       run.summary[key] = so_far.to_json();
       progress.print(r.step, strip.end_distance(), r.time / end_time);
     };
@@ -205,7 +207,7 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
     if (resumed_leg < 0)
       record.begin_leg(0);
     drive([&](double s) { strip.set_prestretch_fraction(quench ? 1 : s); }, 0,
-          "bonding_dynamics", "bonding_dynamics_");
+          "bonding_dynamics", "bonding_dynamics_", false);
   }
   const std::string prefix = a.method == "explicit" ? "explicit_"
                              : inertia               ? "inertial_"
@@ -230,14 +232,31 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
   if (record.leg() == 1)
   {
     strip.set_end_distance(p.L);
-    dissipated = drive(move_end(strip, a.end_distance), dissipated, key, prefix);
+    dissipated = drive(move_end(strip, a.end_distance), dissipated, key, prefix, inertia);
   }
-  if (a.return_distance > 0)
+  if (a.return_distance > 0 && record.leg() <= 2)
   {
     if (record.leg() == 1)
       record.begin_leg(2);
     strip.set_end_distance(a.end_distance);
-    drive(move_end(strip, a.return_distance), dissipated, "return_" + key, prefix);
+    dissipated = drive(move_end(strip, a.return_distance), dissipated, "return_" + key, prefix,
+                       inertia);
+  }
+  if (a.settle_time > 0)
+  {
+    // Leg 3, the end held where the path left it: a gradient flow from the path's state
+    // (the damped flow at c = 1/s relaxes a mode of M^-1 K eigenvalue lambda at the rate
+    // lambda / c: the stiff ones at once, a slow perversion's sliding mode slowly), with no
+    // load to ramp; the static Newton solve of --equilibria failed from such states at rest
+    // (README "Rate study": a nearly singular tangent)
+    if (record.leg() < 3)
+      record.begin_leg(3);
+    set_default_options("settle_dynamics_", {{"loading_time", std::to_string(a.settle_time)},
+                                             {"hold_time", "0"},
+                                             {"damping", "1"},
+                                             {"ts_rtol", "1e-4"},
+                                             {"ts_atol", "1e-4"}});
+    drive([](double) {}, dissipated, "settle_dynamics", "settle_dynamics_", false);
   }
 }
 

@@ -111,14 +111,14 @@ void PathRecord::restore(const nlohmann::json& state)
 }
 
 void PathRecord::step_done(const nlohmann::json& method_row, double dissipated, double kinetic,
-                           bool last)
+                           bool output_now)
 {
   const double force = _strip.end_force(), d = _strip.end_distance();
   _work += 0.5 * (force + _last_force) * (d - _last_distance);
   _travelled += std::abs(d - _last_distance);
   _last_force = force;
   _last_distance = d;
-  if (_travelled >= _next_output - 1e-9 * _p.L || last)
+  if (_travelled >= _next_output - 1e-9 * _p.L || output_now)
   {
     output(method_row, dissipated, kinetic);
     while (_next_output <= _travelled + 1e-9 * _p.L)
@@ -149,7 +149,8 @@ void PathRecord::output(nlohmann::json row, double dissipated, double kinetic)
     radius += h.radius * (h.end - h.start);
     length += h.end - h.start;
   }
-  row.update({{"end_distance", d},
+  row.update({{"leg", _leg},
+              {"end_distance", d},
               {"end_force", _last_force},
               {"strain_energy_A", energy_A},
               {"strain_energy_B", energy_B},

@@ -59,15 +59,17 @@ public:
              const BistripParameters& p, const BistripAnalysis& a, double prebuckled_distance);
 
   /// A leg begins: 0 the bonding at L (no balance), 1 the end driven to end_distance (the
-  /// energy balance counts from the strips' energies now), 2 the end driven back out. Every
+  /// energy balance counts from the strips' energies now), 2 the end driven back out, 3 the
+  /// end held while the flow settles the strip (--settle_time). Every
   /// path begins one (or restores a record, restore()) before its first step.
   void begin_leg(int leg);
 
   /// After every step: `method_row` what the path's method says of it, `dissipated` the
   /// energy its damping has dissipated so far on legs 1 and 2 and `kinetic` the kinetic
-  /// energy now (0 without inertia: the balance is W = dSE + KE + ED), `last` whether it
-  /// ends its leg.
-  void step_done(const nlohmann::json& method_row, double dissipated, double kinetic, bool last);
+  /// energy now (0 without inertia: the balance is W = dSE + KE + ED), `output_now` an
+  /// output besides those by travel (the last step of a leg, a held leg's every tenth).
+  void step_done(const nlohmann::json& method_row, double dissipated, double kinetic,
+                 bool output_now);
 
   double end_force() const { return _last_force; }
   const CentrelineAnalysis& last_analysis() const { return _analysis; }

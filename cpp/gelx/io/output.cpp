@@ -219,8 +219,10 @@ void write_csv_row(std::ostream& out, const std::vector<std::string>& columns,
                    const nlohmann::json& row)
 {
   out.precision(15);
+  // A column the row does not have (a leg of another method: the flow has no supports' work
+  // where the motion before it had) is written as a missing value, as NaN is (null)
   for (std::size_t i = 0; i < columns.size(); ++i)
-    out << (i ? "," : "") << row.at(columns[i]);
+    out << (i ? "," : "") << row.value(columns[i], nlohmann::json());
   out << "\n";
 }
 

@@ -40,6 +40,13 @@ A clamped run (Table 3.1) checks:
   z = L/2 within one slab (the issue's bound), between two helical segments of opposite
   chirality each of whose frames turns at least half a turn (measured 1.1 at 245 mm; the
   detection itself counts a quarter turn as a helix).
+- after a settle leg (--settle_time: the flow at c = 1/s with the end held, ctest
+  bistrip_settle after a fast inertial path): the path ends off equilibrium (|R| / |f_int| above
+  1e-7; measured 1.4e-5) and the settle leg ends in a static equilibrium (1e-9; measured 8.5e-14),
+  whose end force is checked against uniaxial stress with the other outputs at rest; a gradient
+  flow only lowers the energy: SE_A + SE_B never rises over the leg's outputs (to 1e-12 of SE,
+  round-off). A leg that did not run, or ran the inertial integrator again, keeps the path's
+  residual and fails;
 - summary.json's time split: no part negative, assembly and solve measured (checks.time_split);
 - regression, next to those: the coarse mesh's first critical shortening (stored from this
   mesh, 1e-8: the eigenvalue is converged to 1e-10 by SLEPc and the mesh is fixed) and within
@@ -219,6 +226,24 @@ if coarse_run:
                        ("strain_energy_B", 334.347437674761)):
         checks.relative(f"{key} at 24.5 cm, regression of this coarse mesh", float(final[key]),
                         value, 1e-6)
+
+if prm["settle_time"] > 0:
+    path = [r for r in steps if r["leg"] == "1"]
+    settle = [r for r in steps if r["leg"] == "3"]
+    checks.require(f"{len(path)} outputs of the path (leg 1), {len(settle)} of the settle leg",
+                   path and settle)
+    if path and settle:
+        moving = float(path[-1]["static_residual"])
+        checks.require(f"the path ends off equilibrium: |R| / |f_int| = {moving:.3g} > 1e-7",
+                       moving > 1e-7)
+        checks.absolute("after the settle leg: |R| / |f_int|",
+                        float(settle[-1]["static_residual"]), 0.0, 1e-9)
+        energy = [float(r["strain_energy_A"]) + float(r["strain_energy_B"])
+                  for r in path[-1:] + settle]
+        rise = max(b - a for a, b in zip(energy, energy[1:]))
+        checks.require(f"the strain energy never rises over the flow: largest change {rise:.3g}"
+                       f" mJ of SE = {energy[0]:.6g} mJ (drop {energy[0] - energy[-1]:.3g})",
+                       rise <= 1e-12 * energy[0])
 
 helices = summary["helices"]
 slab = prm["L"] / prm["nz"]

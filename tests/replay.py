@@ -20,6 +20,7 @@ import hashlib
 import json
 import pathlib
 import re
+import shutil
 import subprocess
 import sys
 
@@ -104,6 +105,7 @@ def refused(name, scene_text, expect):
     file = out / f"{name}.txt"
     file.write_text(scene_text)
     folder = out / name
+    shutil.rmtree(folder, ignore_errors=True)  # a run before this one may have left it
     p = subprocess.run([mpiexec, "-q", "-np", ranks, exe, "--output", str(folder), "--scene",
                         str(file)],
                        capture_output=True, text=True)

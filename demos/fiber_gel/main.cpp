@@ -26,6 +26,10 @@
 namespace
 {
 std::string unit_interval(double v) { return v > 0 && v < 1 ? "" : "must lie in (0, 1)"; }
+std::string two_numbers(const std::vector<double>& values)
+{
+  return values.size() == 2 ? "" : "must be 'fit' or two numbers 'A,B'";
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -64,21 +68,8 @@ int main(int argc, char* argv[])
            "chi(T) = A + B T (B in 1/K) as 'A,B'; then phi_i and alpha0 are the free gel's states "
            "at T_i and T_f and may not be set. 'fit': the line through the free gel's chi at "
            "phi_i (T_i) and at phi_i/alpha0^3 (T_f), section 4.4.2",
-           [](const std::string& text)
-           {
-             if (text == "fit")
-               return std::string();
-             try
-             {
-               return gelx::Parameters::real_list(text).size() == 2
-                          ? std::string()
-                          : std::string("must be 'fit' or two numbers 'A,B'");
-             }
-             catch (const gelx::InputError& e)
-             {
-               return std::string(e.what());
-             }
-           });
+           [line = gelx::Parameters::reals(two_numbers)](const std::string& text)
+           { return text == "fit" ? std::string() : line(text); });
   prm.bind("loading", "T_i", gel.T_i, "initial temperature (K)", gelx::Parameters::positive);
   prm.bind("loading", "T_f", gel.T_f,
            "final temperature (K): with --chi fit, chi(T) is fitted so that the free gel "

@@ -19,6 +19,7 @@
 #include "theory/flory_rehner.h"
 #include "theory/peo.h"
 
+#include <algorithm>
 #include <gelx/io/parameters.h>
 
 #include <chrono>
@@ -38,20 +39,14 @@ namespace
 const char* peo_names[] = {"peo_chi_A",    "peo_chi_B",     "peo_v_over_vp", "peo_energy_p",
                            "peo_entropy_p", "peo_energy_w", "peo_entropy_w"};
 
-std::string positive_list(const std::string& text)
-{
-  try
-  {
-    for (double x : gelx::Parameters::real_list(text))
-      if (!(x > 0.0))
-        return "every value must be positive";
-    return "";
-  }
-  catch (const gelx::InputError& e)
-  {
-    return e.what();
-  }
-}
+/// A list of positive reals
+const auto positive_list = gelx::Parameters::reals(
+    [](const std::vector<double>& values)
+    {
+      return std::all_of(values.begin(), values.end(), [](double x) { return x > 0.0; })
+                 ? ""
+                 : "every value must be positive";
+    });
 
 std::string open_unit(double v) { return v > 0.0 && v < 1.0 ? "" : "must lie in (0, 1)"; }
 std::string finite_value(double v) { return std::isfinite(v) ? "" : "must be a finite number"; }

@@ -36,18 +36,8 @@ inline void declare(Parameters& prm)
   prm.add("loading", "quiet", false, "another flag");
   prm.add("loading", "ends", "clamped", "one word of two", Parameters::one_of({"clamped", "free"}));
   prm.add("output", "label", "", "free text");
-  prm.add("output", "n_nu_vm", "0.1,0.01", "a list", [](const std::string& text)
-          {
-            try
-            {
-              Parameters::real_list(text);
-              return std::string();
-            }
-            catch (const InputError& e)
-            {
-              return std::string(e.what());
-            }
-          });
+  prm.add("output", "n_nu_vm", "0.1,0.01", "a list",
+          Parameters::reals([](const std::vector<double>&) { return ""; }));
 }
 
 /// The scene file of an accepted `prm` must read back, into a fresh set, to the same values

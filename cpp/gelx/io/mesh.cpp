@@ -326,8 +326,8 @@ TaggedMesh mesh_gmsh_model(MPI_Comm comm, const std::function<void()>& build,
     try
     {
       // each mirror image doubles the cells
-      data = mesh_with_gmsh(gmsh_args, build, std::ldexp(known_cells, static_cast<int>(mirror_axes.size())),
-                            memory);
+      const double cells = std::ldexp(known_cells, static_cast<int>(mirror_axes.size()));
+      data = mesh_with_gmsh(gmsh_args, build, cells, memory);
       for (int axis : mirror_axes)
         mirror(data, axis);
     }

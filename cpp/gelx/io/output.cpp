@@ -77,6 +77,8 @@ void CellField::update()
   _expression->eval(cells, values);
 
   const auto& dofmap = *_fields.front()->function_space()->dofmap();
+  // a 3x3 expression's whole tensor (n == 9), blocked by 9
+  const auto& tensor_dofmap = *(_tensor ? _tensor : _fields.front())->function_space()->dofmap();
   for (std::int32_t c = 0; c < num_cells; ++c)
   {
     const std::int32_t dof = dofmap.cell_dofs(c)[0];
@@ -96,7 +98,7 @@ void CellField::update()
       _fields[k]->x()->mutable_array()[dof] = components[k];
     _fields[6]->x()->mutable_array()[dof] = std::sqrt(1.5 * dev2);
     _fields[7]->x()->mutable_array()[dof] = p;
-    const std::int32_t block = _tensor->function_space()->dofmap()->cell_dofs(c)[0];
+    const std::int32_t block = tensor_dofmap.cell_dofs(c)[0];
     for (int k = 0; k < 9; ++k)
       _tensor->x()->mutable_array()[9 * block + k] = values(c, k);
   }

@@ -480,6 +480,24 @@ std::vector<double> Parameters::real_list(const std::string& text)
 
 std::string Parameters::positive(double v) { return v > 0 ? "" : "must be positive"; }
 
+std::function<std::string(const std::string&)>
+Parameters::reals(std::function<std::string(const std::vector<double>&)> valid)
+{
+  return [valid = std::move(valid)](const std::string& text)
+  {
+    std::vector<double> values;
+    try
+    {
+      values = real_list(text);
+    }
+    catch (const InputError& e)
+    {
+      return std::string(e.what());
+    }
+    return valid(values);
+  };
+}
+
 std::function<std::string(const std::string&)> Parameters::one_of(std::vector<std::string> words)
 {
   std::string list;

@@ -109,6 +109,10 @@ public:
   static std::string at_least_one(int v);
   /// A word among `words`: "must be a, b or c" otherwise.
   static std::function<std::string(const std::string&)> one_of(std::vector<std::string> words);
+  /// A text check for a list of reals (real_list): what is wrong with the list, else what
+  /// `valid` says of its values ("" when they are fine).
+  static std::function<std::string(const std::string&)>
+  reals(std::function<std::string(const std::vector<double>&)> valid);
 
 private:
   struct Entry

@@ -29,6 +29,23 @@ gelx::Sources& expected_files()
 std::string expected_origin;
 
 std::string abbreviated(const std::string& hash) { return hash.substr(0, 12); }
+
+/// The SHA-256 of the file at `path`, in hex. Throws InputError when it cannot be read.
+std::string sha256_of_file(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  const std::string content{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in && !in.eof())
+    throw gelx::InputError("cannot read '" + path + "'");
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int size = 0;
+  if (!EVP_Digest(content.data(), content.size(), digest, &size, EVP_sha256(), nullptr))
+    throw std::runtime_error("SHA-256 of '" + path + "' failed");
+  std::ostringstream hex;
+  for (unsigned int i = 0; i < size; ++i)
+    hex << std::hex << std::setw(2) << std::setfill('0') << int(digest[i]);
+  return hex.str();
+}
 } // namespace
 
 /// Called by the constructors that the build compiles in with each form's kernels
@@ -41,31 +58,11 @@ extern "C" void gelx_record_form_source(const char* path, const char* sha256)
 namespace gelx
 {
 
-const Sources& form_sources() { return built_forms(); }
-
-const Sources& input_files() { return read_files(); }
-
 Sources run_sources()
 {
   Sources all = built_forms();
   all.insert(read_files().begin(), read_files().end());
   return all;
-}
-
-std::string sha256_of_file(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  const std::string content{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (!in && !in.eof())
-    throw InputError("cannot read '" + path + "'");
-  unsigned char digest[EVP_MAX_MD_SIZE];
-  unsigned int size = 0;
-  if (!EVP_Digest(content.data(), content.size(), digest, &size, EVP_sha256(), nullptr))
-    throw std::runtime_error("SHA-256 of '" + path + "' failed");
-  std::ostringstream hex;
-  for (unsigned int i = 0; i < size; ++i)
-    hex << std::hex << std::setw(2) << std::setfill('0') << int(digest[i]);
-  return hex.str();
 }
 
 void record_input_file(const std::string& path)

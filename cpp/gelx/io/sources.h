@@ -15,14 +15,9 @@ namespace gelx
 /// path -> SHA-256 (hex)
 using Sources = std::map<std::string, std::string>;
 
-/// The form files (forms/NAME.py and the modules they may import, by their paths in the source
-/// tree) whose kernels this program was built with.
-const Sources& form_sources();
-
-/// The input files this run has read so far (record_input_file), by the path it read them at.
-const Sources& input_files();
-
-/// Both: what this run has been computed from so far.
+/// What this run has been computed from so far: the form files whose kernels this program was
+/// built with (forms/NAME.py and the modules they may import, by their paths in the source
+/// tree) and the input files it has read (record_input_file), by the path it read them at.
 Sources run_sources();
 
 /// Record the content of the input file at `path`, which the run reads. If the run replays a
@@ -36,8 +31,5 @@ void record_input_file(const std::string& path);
 /// it. A record without forms (one written before gelx recorded them) is not compared.
 void expect_sources(const Sources& recorded, const std::string& origin,
                     const std::string& program);
-
-/// The SHA-256 of the file at `path`, in hex. Throws InputError when it cannot be read.
-std::string sha256_of_file(const std::string& path);
 
 } // namespace gelx

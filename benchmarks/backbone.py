@@ -9,7 +9,6 @@ per step. Time a quiet machine: both cores are used (2 ranks).
 
 usage: backbone.py BUILD OUT     (./gelx bench backbone)
 """
-import csv
 import json
 import pathlib
 import subprocess
@@ -17,6 +16,7 @@ import sys
 import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from studies import MPI_ENV  # noqa: E402  (demos/studies.py)
 
 BASELINE = "1930b15"  # the last commit before the SNES backbone
@@ -55,7 +55,7 @@ def run(build, scene, folder, options):
                    check=True, stdout=subprocess.DEVNULL, env=MPI_ENV)
     seconds = time.perf_counter() - start
     status = json.loads((folder / "summary.json").read_text())["status"]
-    rows = list(csv.DictReader(open(folder / "steps.csv")))
+    rows = read_table(folder / "steps.csv")
     iterations = sum(int(r[ITERATIONS.get(scene, "newton_iterations")]) for r in rows)
     return {"seconds": seconds, "steps": len(rows), "iterations": iterations, "status": status}
 

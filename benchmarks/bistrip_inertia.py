@@ -16,6 +16,7 @@ import pathlib
 import sys
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from studies import run_scene  # noqa: E402  (demos/studies.py)
 
 build, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
@@ -30,7 +31,7 @@ for label, options in STEPS.items():
     summary = run_scene(build, "bistrip", folder, ranks,
                         ["--nz", "40", "--end_distance", "90", "--output_every", "5",
                          "--method", "inertia", *options], reuse=True)
-    outputs = [r for r in csv.DictReader(open(folder / "steps.csv")) if r["perversions"] != ""]
+    outputs = [r for r in read_table(folder / "steps.csv") if r["perversions"] != ""]
     passing = min(outputs, key=lambda r: abs(float(r["end_distance"]) - THESIS_DISTANCE))
     steps = int(outputs[-1]["step"])
     rows.append({"time_step": label, "wall_time": summary["wall_time"], "steps": steps,

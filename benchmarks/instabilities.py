@@ -16,7 +16,6 @@ points up to where it fails, its failed attempts included). Time a quiet machine
 
 usage: instabilities.py BUILD OUT     (./gelx bench instabilities)
 """
-import csv
 import json
 import pathlib
 import subprocess
@@ -24,6 +23,7 @@ import sys
 import time
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from studies import MPI_ENV  # noqa: E402  (demos/studies.py)
 
 build, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
@@ -36,7 +36,7 @@ def run(program, folder, options, demo="buckling"):
                    + options, check=True, stdout=subprocess.DEVNULL, env=MPI_ENV)
     seconds = time.perf_counter() - start
     summary = json.loads((out / folder / "summary.json").read_text())
-    rows = list(csv.DictReader(open(out / folder / "steps.csv")))
+    rows = read_table(out / folder / "steps.csv")
     return summary, rows, seconds
 
 

@@ -33,6 +33,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from studies import MPI_ENV  # noqa: E402  (demos/studies.py)
 
 RANKS = 2
@@ -74,7 +75,7 @@ def run(build, problem, folder, options, reuse):
                               text=True, env=MPI_ENV)
         error = done.stderr.strip().splitlines()[-1] if done.returncode else ""
     summary = json.loads((folder / "summary.json").read_text())
-    steps = list(csv.DictReader(open(folder / "steps.csv")))
+    steps = read_table(folder / "steps.csv")
     newton = sum(int(r["newton_iterations"]) for r in steps)
     split = summary["time_split"]
     return {"unknowns": int(summary.get("num_unknowns", summary["num_dofs"])),

@@ -1,15 +1,36 @@
 """Read the fields of a gelx run (fields.xdmf and the HDF5 files it names) with the XML parser and
-h5py, independently of dolfinx: for plots and for checks of the output.
+h5py, independently of dolfinx, and its tables (steps.csv, ...): for plots and for checks of the
+output.
 
     series = FieldSeries("results/pyramid")
     series.times                       # one per step
     x, cells = series.mesh(-1)         # node coordinates and cell-node connectivity of a step
     u = series.field("displacement", -1)
+    rows = read_table("results/pyramid/steps.csv")   # [{column: text}], one a step
+    units = table_units("results/pyramid/steps.csv") # {column: unit}
 """
+import csv
 import pathlib
+import re
 import xml.etree.ElementTree as ET
 
 import h5py
+
+
+def read_table(path):
+    """The rows of a gelx table as {column: text}, past the comment line of its units"""
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def table_units(path):
+    """{column: unit} from a gelx table's first line, "# units: step [1], end_distance [mm], ..."
+    ({} when it has none)"""
+    with open(path) as f:
+        first = f.readline()
+    if not first.startswith("# units:"):
+        return {}
+    return dict(re.findall(r"(\w+) \[([^\]]*)\]", first))
 
 
 class FieldSeries:

@@ -23,7 +23,7 @@ import sys
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
-from fields import FieldSeries  # noqa: E402  (demos/fields.py)
+from fields import FieldSeries, read_table  # noqa: E402  (demos/fields.py)
 
 scene, binary, work = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
 mpiexec = sys.argv[4] if len(sys.argv) > 4 else None
@@ -220,7 +220,7 @@ def read_summary(folder):
 
 def data_rows(steps_csv):
     """The data rows of a steps.csv: 0 when it holds its header only or was not written"""
-    return max(len(steps_csv.read_text().strip().splitlines()) - 1, 0) if steps_csv.exists() else 0
+    return len(read_table(steps_csv)) if steps_csv.exists() else 0
 
 
 def typed(kind, text):
@@ -307,10 +307,8 @@ for name, text in values.items():
 if scene == "buckling":
     # steps.csv keeps the max_steps points of the straight path, all below the critical load
     # (eigenvalues.csv), which is why the path found no bifurcation
-    with open(out / "steps.csv") as f:
-        rows = list(csv.DictReader(f))
-    with open(out / "eigenvalues.csv") as f:
-        critical = float(next(csv.DictReader(f))["critical_load_over_euler"])
+    rows = read_table(out / "steps.csv")
+    critical = float(read_table(out / "eigenvalues.csv")[0]["critical_load_over_euler"])
     loads = [float(r["load_factor"]) for r in rows]
     checks.require(f"no bifurcation: steps.csv holds {len(rows)} points on paths "
                    f"{sorted({r['path'] for r in rows})}, loads {loads} rising and below the "
@@ -337,8 +335,8 @@ if scene == "block":
     u = fields.field("displacement", 0)
     checks.require(f"forced_divergence: fields.xdmf readable with {len(fields.times)} step, "
                    f"displacement of shape {u.shape}", len(fields.times) == 1 and u.shape[1] == 3)
-    rows = (out / "steps.csv").read_text().strip().splitlines()
-    checks.require(f"forced_divergence: steps.csv has {len(rows) - 1} data row", len(rows) == 2)
+    rows = read_table(out / "steps.csv")
+    checks.require(f"forced_divergence: steps.csv has {len(rows)} data row", len(rows) == 1)
 
     # MUMPS reads its options at the first factorisation: a misspelt one ends the run at the
     # first step's end, not after its last (one row kept)

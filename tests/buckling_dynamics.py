@@ -21,7 +21,6 @@ parameters (closed_forms.euler_load, closed_forms.elastica_load_ratio), and its 
 
 usage: buckling_dynamics.py OUTPUT_DIR
 """
-import csv
 import json
 import pathlib
 import sys
@@ -29,12 +28,13 @@ import sys
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from closed_forms import elastica_load_ratio, euler_load  # noqa: E402  (demos/closed_forms.py)
 
 out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())
 p, dyn = s["parameters"], s["dynamics"]
-rows = list(csv.DictReader(open(out / "steps.csv")))
+rows = read_table(out / "steps.csv")
 checks = Checks()
 
 P_cr = s["critical_load"]

@@ -16,11 +16,14 @@ comparison of a different method also names what that method must change (issue 
 usage: compare_summaries.py A/summary.json B/summary.json RTOL KEY [KEY ...] [checks above]
 """
 import argparse
-import csv
 import json
 import pathlib
+import sys
 
 from checks import Checks
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 
 parser = argparse.ArgumentParser()
 parser.add_argument("a", type=pathlib.Path)
@@ -53,8 +56,7 @@ for key, value_a, value_b in args.values:
                    a.get(key) == value_a and b.get(key) == value_b)
 if args.krylov:
     def totals(summary_path):
-        with open(summary_path.parent / "steps.csv") as f:
-            rows = list(csv.DictReader(f))
+        rows = read_table(summary_path.parent / "steps.csv")
         return (sum(int(r["newton_iterations"]) for r in rows),
                 sum(int(r["linear_iterations"]) for r in rows))
     newton_a, linear_a = totals(args.a)

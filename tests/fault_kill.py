@@ -9,7 +9,6 @@ SIGKILL (tests/killing.py; no handler can run: what is on disk is all that is le
 
 usage: fault_kill.py RANKS KILL_AFTER TIME_COLUMN OUTPUT_DIR SCENE_BINARY [scene options...]
 """
-import csv
 import json
 import math
 import pathlib
@@ -20,7 +19,7 @@ from checks import Checks
 from killing import run_until
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
-from fields import FieldSeries  # noqa: E402  (demos/fields.py)
+from fields import FieldSeries, read_table  # noqa: E402  (demos/fields.py)
 
 ranks, kill_after, time_column, out = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4]
 command = ["mpirun", "-np", ranks] + sys.argv[5:6] + ["--output", out] + sys.argv[6:]
@@ -31,7 +30,7 @@ checks = Checks()
 
 def rows_written():
     try:
-        return max(0, len((out / "steps.csv").read_text().splitlines()) - 1)
+        return len(read_table(out / "steps.csv"))
     except FileNotFoundError:
         return 0
 
@@ -52,8 +51,7 @@ for k in range(steps):
 checks.require(f"fields.xdmf: {steps} steps, each with its mesh and fields "
                f"{series.names(-1) if steps else []} complete in HDF5 and finite", finite)
 
-with open(out / "steps.csv") as f:
-    rows = list(csv.DictReader(f))
+rows = read_table(out / "steps.csv")
 whole = all(None not in r.values() and None not in r and len(r) == len(rows[0]) for r in rows)
 checks.require(f"steps.csv: {len(rows)} whole rows", whole and len(rows) >= kill_after)
 checks.require(f"steps.csv rows ({len(rows)}) = fields.xdmf steps ({steps})", len(rows) == steps)

@@ -21,7 +21,6 @@ computed here from the run's parameters (closed_forms.GelHeating): the chi(T) li
 
 usage: fiber_gel_regression.py OUTPUT_DIR
 """
-import csv
 import json
 import pathlib
 import sys
@@ -29,6 +28,7 @@ import sys
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from closed_forms import GelHeating  # noqa: E402  (demos/closed_forms.py)
 
 # gelx-fiber_gel --l 10 --L 200 --D 200 --h_fiber 2 --h_far 25 --grading 30 (3885 dofs), with
@@ -39,7 +39,7 @@ STORED = {"alpha_par": 0.8000163480980029, "alpha_perp": 0.8000161088137387,
 s = json.loads((pathlib.Path(sys.argv[1]) / "summary.json").read_text())
 checks = Checks()
 checks.require(f"run {s['status']}", s["status"] == "completed")
-checks.newton_tolerance(list(csv.DictReader(open(pathlib.Path(sys.argv[1]) / "steps.csv"))))
+checks.newton_tolerance(read_table(pathlib.Path(sys.argv[1]) / "steps.csv"))
 gel = GelHeating.from_parameters(s["parameters"])
 checks.relative("chi_A against Eq. 4.7 at phi_i and phi_f", s["chi_A"], gel.chi_A, 1e-12)
 checks.relative("chi_B against Eq. 4.7 at phi_i and phi_f", s["chi_B"], gel.chi_B, 1e-12)

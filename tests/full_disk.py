@@ -17,7 +17,6 @@ stream and, with the disk full, replaced by a truncated copy; HDF5 printed its 7
 
 usage: full_disk.py DISK_LIBRARY WORK_DIR SCENE_BINARY [scene options...]
 """
-import csv
 import json
 import os
 import pathlib
@@ -31,7 +30,7 @@ import numpy as np
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
-from fields import FieldSeries  # noqa: E402  (demos/fields.py)
+from fields import FieldSeries, read_table  # noqa: E402  (demos/fields.py)
 
 library, work, binary = sys.argv[1], pathlib.Path(sys.argv[2]), sys.argv[3]
 options = sys.argv[4:]
@@ -57,8 +56,7 @@ def run(out, budget=None, extra=()):
 
 
 def rows_of(folder):
-    with open(folder / "steps.csv") as f:
-        return list(csv.DictReader(f))
+    return read_table(folder / "steps.csv")
 
 
 def table(rows):

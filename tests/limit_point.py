@@ -10,7 +10,6 @@ maximum, 1 after it, no bifurcation, and the shape spherical to 1 % (asphericity
 
 usage: limit_point.py OUTPUT_DIR
 """
-import csv
 import json
 import pathlib
 import sys
@@ -18,11 +17,12 @@ import sys
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from closed_forms import shell_pressure_maximum, shell_pressure_over_G  # noqa: E402  (demos/closed_forms.py)
 
 out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())
-rows = list(csv.DictReader(open(out / "steps.csv")))
+rows = read_table(out / "steps.csv")
 p = s["parameters"]
 A, B = p["A"], p["B"]
 stretch_at_max, p_max = shell_pressure_maximum(A, B)

@@ -17,7 +17,6 @@ Asserted, against quantities computed here:
 
 usage: lost_sphericity.py OUTPUT_DIR
 """
-import csv
 import json
 import pathlib
 import sys
@@ -28,11 +27,11 @@ from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
 from closed_forms import shell_pressure_maximum  # noqa: E402
-from fields import FieldSeries  # noqa: E402
+from fields import FieldSeries, read_table  # noqa: E402
 
 out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())
-rows = list(csv.DictReader(open(out / "steps.csv")))
+rows = read_table(out / "steps.csv")
 p = s["parameters"]
 checks = Checks()
 _, p_max = shell_pressure_maximum(p["A"], p["B"])

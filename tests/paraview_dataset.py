@@ -13,7 +13,6 @@ usage: paraview_dataset.py OUTPUT_DIR [--file fields.xdmf] [--steps-csv] ARRAY..
   --steps-csv   the time steps are the rows of the folder's steps.csv (one field step per row)
 """
 import argparse
-import csv
 import json
 import pathlib
 import shutil
@@ -25,7 +24,7 @@ import numpy as np
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
-from fields import FieldSeries  # noqa: E402  (demos/fields.py)
+from fields import FieldSeries, read_table  # noqa: E402  (demos/fields.py)
 
 TENSOR_OUTPUTS = ["xx", "yy", "zz", "yz", "xz", "xy", "vm", "p"]
 
@@ -61,8 +60,7 @@ print(f"ParaView's reader: {probe['reader']}")
 checks.require(f"ParaView's time steps {len(probe['times'])} equal the index's {len(series.times)}"
                f" to the last digit", probe["times"] == series.times)
 if args.steps_csv:
-    with open(args.output / "steps.csv") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_table(args.output / "steps.csv")
     checks.require(f"one time step per row of steps.csv ({len(rows)})",
                    len(probe["times"]) == len(rows))
 for label, step in (("first", 0), ("last", -1)):

@@ -27,7 +27,6 @@ point (steps.csv axial_force) and the linear buckling loads (eigenvalues.csv cri
 
 usage: post_buckling.py OUTPUT_DIR
 """
-import csv
 import json
 import math
 import pathlib
@@ -38,6 +37,7 @@ import numpy as np
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from closed_forms import EFFECTIVE_LENGTH_FACTOR, elastica_load_ratio, euler_load  # noqa: E402  (demos/closed_forms.py)
 
 # The issue's bounds, 1% on the branch and 2% on the imperfect column, for both end conditions.
@@ -62,8 +62,8 @@ out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())
 p = s["parameters"]
 ends = p["ends"]
-rows = list(csv.DictReader(open(out / "steps.csv")))
-eigen = list(csv.DictReader(open(out / "eigenvalues.csv")))
+rows = read_table(out / "steps.csv")
+eigen = read_table(out / "eigenvalues.csv")
 checks = Checks()
 
 

@@ -22,7 +22,6 @@ load to d/H = d_max and unload back to 0 (--unload) in equal steps, with moduli 
 
 usage: pyramid_apex.py OUTPUT_G OUTPUT_sG
 """
-import csv
 import json
 import pathlib
 import sys
@@ -31,10 +30,13 @@ import numpy as np
 
 from checks import Checks
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
+
 
 def load(folder):
     folder = pathlib.Path(folder)
-    rows = list(csv.DictReader(open(folder / "steps.csv")))
+    rows = read_table(folder / "steps.csv")
     columns = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
     return json.loads((folder / "summary.json").read_text()), columns
 
@@ -42,7 +44,7 @@ def load(folder):
 (s1, a), (s2, b) = load(sys.argv[1]), load(sys.argv[2])
 checks = Checks()
 for folder in sys.argv[1:3]:
-    checks.newton_tolerance(list(csv.DictReader(open(pathlib.Path(folder) / "steps.csv"))),
+    checks.newton_tolerance(read_table(pathlib.Path(folder) / "steps.csv"),
                             f"{folder}: every step")
 p1, p2 = s1["parameters"], s2["parameters"]
 checks.require(f"runs {s1['status']} and {s2['status']}, unloading, G = {p1['G']} and {p2['G']}",

@@ -26,7 +26,6 @@ invariants.
 
 usage: pyramid_regression.py OUTPUT_DIR
 """
-import csv
 import json
 import math
 import pathlib
@@ -37,7 +36,7 @@ import numpy as np
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
-from fields import FieldSeries  # noqa: E402  (demos/fields.py)
+from fields import FieldSeries, read_table  # noqa: E402  (demos/fields.py)
 
 out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())
@@ -52,7 +51,7 @@ checks.require(f"run {s['status']} to d/H = {s['final_d_over_H']}",
 for key in reference:
     if key != "options":
         checks.relative(f"{key} against the stored value", s[key], reference[key], 1e-6)
-rows = list(csv.DictReader(open(out / "steps.csv")))
+rows = read_table(out / "steps.csv")
 checks.newton_tolerance(rows)
 checks.absolute("largest penetration (um)", s["max_penetration"], 0, 1e-8)
 # The slopes against the mesh-converged 0.8793 (README "Work precision", fit to d/H = 0.8):

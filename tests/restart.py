@@ -16,7 +16,6 @@ usage: restart.py REFERENCE_DIR KILL_AFTER OTHER_RANKS OTHER_RTOL QUANTITIES COL
 QUANTITIES and COLUMNS: comma-separated keys of summary.json and columns of steps.csv to compare;
 the first of COLUMNS is the path's time (strictly increasing along steps.csv).
 """
-import csv
 import json
 import pathlib
 import shutil
@@ -30,7 +29,7 @@ from checks import Checks
 from killing import run_until
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
-from fields import FieldSeries  # noqa: E402  (demos/fields.py)
+from fields import FieldSeries, read_table  # noqa: E402  (demos/fields.py)
 
 reference = pathlib.Path(sys.argv[1])
 kill_after, other_ranks, other_rtol = int(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4])
@@ -48,8 +47,7 @@ def mpirun(ranks, args):
 
 
 def rows_of(folder):
-    with open(folder / "steps.csv") as f:
-        return list(csv.DictReader(f))
+    return read_table(folder / "steps.csv")
 
 
 def number(text):
@@ -59,7 +57,7 @@ def number(text):
 
 def rows_written(folder):
     try:
-        return max(0, len((folder / "steps.csv").read_text().splitlines()) - 1)
+        return len(read_table(folder / "steps.csv"))
     except FileNotFoundError:
         return 0
 
@@ -131,10 +129,11 @@ for restart_ranks, rtol in [(ranks, SAME_RTOL), (other_ranks, other_rtol)]:
     # steps.csv: the rows up to the checkpoint are the killed run's, byte for byte (wall
     # times included, which no second computation reproduces): the restart did not recompute
     # them
-    kept = (out / "steps.csv").read_text().splitlines()[:restarted + 1]
+    # (two lines above them: the units and the header)
+    kept = (out / "steps.csv").read_text().splitlines()[:restarted + 2]
     checks.require(f"{name}: the {restarted} rows up to the checkpoint are the killed run's, "
                    "byte for byte", kept == (killed / "steps.csv").read_text().splitlines()
-                   [:restarted + 1] and len(kept) == restarted + 1)
+                   [:restarted + 2] and len(kept) == restarted + 2)
 
     # steps.csv: the reference's rows, each once, in order
     rows = rows_of(out)

@@ -23,7 +23,6 @@ Bounds, and why:
 
 usage: snap.py OUTPUT_DIR
 """
-import csv
 import json
 import math
 import pathlib
@@ -32,6 +31,7 @@ import sys
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from closed_forms import bisect, compressible_shell_pressure, golden_extremum  # noqa: E402
 
 out = pathlib.Path(sys.argv[1])
@@ -88,7 +88,7 @@ checks.relative("dynamics' final stretch against arc-length's at the target",
                 dynamics["final_stretch"], arclength["stretch_at_target"], 1e-3)
 
 # The dissipated energy against the out-of-balance work, in the sector's solid angle
-rows = list(csv.DictReader(open(out / "steps.csv")))
+rows = read_table(out / "steps.csv")
 t = prm["t"]
 n = 200  # midpoint rule on the square [0, t]^2 of x/z, y/z: error ~1e-6 relative
 omega = math.pi / 2 if prm["domain"] == "octant" else sum(

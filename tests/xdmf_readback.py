@@ -5,7 +5,6 @@ and torque) equals the stored energy at every step.
 
 usage: xdmf_readback.py OUTPUT_DIR
 """
-import csv
 import json
 import math
 import pathlib
@@ -16,7 +15,7 @@ import numpy as np
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
-from fields import FieldSeries  # noqa: E402  (demos/fields.py)
+from fields import FieldSeries, read_table  # noqa: E402  (demos/fields.py)
 
 out = pathlib.Path(sys.argv[1])
 summary = json.loads((out / "summary.json").read_text())
@@ -33,8 +32,7 @@ checks.require(f"geometry holds {X.shape[0]} nodes, topology refers to {int(cell
 times = series.times
 checks.require(f"{len(times)} steps in fields.xdmf; summary and steps.csv say "
                f"{summary['steps']}", len(times) == summary["steps"])
-with open(out / "steps.csv") as f:
-    rows = list(csv.DictReader(f))
+rows = read_table(out / "steps.csv")
 checks.require(f"steps.csv has {len(rows)} rows", len(rows) == summary["steps"])
 # The direct solve is one preonly iteration a Newton iteration, the predictor's included (it
 # was left out: 2 linear for 3 Newton iterations)

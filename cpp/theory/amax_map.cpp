@@ -2,6 +2,7 @@
 
 #include "theory/flory_rehner.h"
 #include "theory/roots.h"
+#include <gelx/io/units.h>
 
 #include <algorithm>
 #include <cmath>
@@ -111,7 +112,13 @@ void write_csv(const AmaxMap& m, const std::string& path)
     throw std::runtime_error("cannot write " + path);
   f.precision(12);
   const bool peo = !m.T_i.empty();
-  f << "phi_i,eps_par,A_max,phi_prime_i,phi_prime_f" << (peo ? ",T_i,T_f" : "") << "\n";
+  std::vector<std::string> columns = {"phi_i", "eps_par", "A_max", "phi_prime_i", "phi_prime_f"};
+  if (peo)
+    columns.insert(columns.end(), {"T_i", "T_f"});
+  f << gelx::units_line(columns, gelx::millimetre);
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    f << (c ? "," : "") << columns[c];
+  f << "\n";
   for (std::size_t i = 0; i < m.phi_i.size(); ++i)
     for (std::size_t j = 0; j < m.eps.size(); ++j)
     {

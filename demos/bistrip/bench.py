@@ -21,6 +21,9 @@ import pathlib
 import subprocess
 import sys
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from fields import read_table  # noqa: E402  (demos/fields.py)
+
 
 def option(name, default):
     return sys.argv[sys.argv.index(name) + 1] if name in sys.argv else default
@@ -70,7 +73,7 @@ for label, options in runs:
                        env=dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
                                 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1"))
     s = json.loads((folder / "summary.json").read_text())
-    steps = list(csv.DictReader(open(folder / "steps.csv")))
+    steps = read_table(folder / "steps.csv")
     row = {"run": label, "nz": int(options[options.index("--nz") + 1]),
            "num_dofs": s["num_dofs"], "wall_time": s["wall_time"],
            "critical_shortening": s["first_critical_shortening"]}

@@ -15,7 +15,6 @@ any file.
 
 usage: plot.py OUTPUT_DIR
 """
-import csv
 import json
 import pathlib
 import sys
@@ -30,7 +29,7 @@ from matplotlib.colors import Normalize  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from fields import FieldSeries  # noqa: E402  (demos/fields.py)
+from fields import FieldSeries, read_table  # noqa: E402  (demos/fields.py)
 
 # The six faces of a hexahedron in the XDMF (VTK) node order, each a ring of four nodes
 HEX_FACES = np.array([[0, 1, 2, 3], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6],
@@ -44,11 +43,11 @@ def present(path):
         return False
     if path.suffix == ".xdmf":
         return len(FieldSeries(path.parent).times) > 0
-    return len(path.read_text().splitlines()) > 1
+    return len(read_table(path)) > 0
 
 
 def table(out, name):
-    return list(csv.DictReader(open(out / name)))
+    return read_table(out / name)
 
 
 def column(rows, key):

@@ -2,7 +2,6 @@
 
 usage: plot.py OUTPUT_DIR
 """
-import csv
 import json
 import pathlib
 import sys
@@ -13,11 +12,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from closed_forms import cantilever_elastica  # noqa: E402  (demos/closed_forms.py)
 
 out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())
-rows = list(csv.DictReader(open(out / "steps.csv")))
+rows = read_table(out / "steps.csv")
 P_cr = s["critical_load_over_euler"]
 
 
@@ -51,7 +51,7 @@ print(f"wrote {out / 'buckling.png'}")
 # The bifurcation diagram (--diagram true): the tip deflections of every branch against the
 # load, stable points (no negative eigenvalue) joined by solid lines, unstable by dashed ones
 if (out / "diagram.csv").exists():
-    points = list(csv.DictReader(open(out / "diagram.csv")))
+    points = read_table(out / "diagram.csv")
     fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
     for axis, (ax, column) in enumerate(zip(axes, ["tip_x_over_L", "tip_y_over_L"])):
         for branch in sorted({int(p["branch"]) for p in points}):

@@ -4,7 +4,6 @@ stress concentrates at the fiber's end).
 
 usage: plot.py OUTPUT_DIR
 """
-import csv
 import json
 import pathlib
 import sys
@@ -15,11 +14,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
-from fields import FieldSeries  # noqa: E402  (demos/fields.py)
+from fields import FieldSeries, read_table  # noqa: E402  (demos/fields.py)
 
 out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())
-rows = list(csv.DictReader(open(out / "steps.csv")))
+rows = read_table(out / "steps.csv")
 T = [s["parameters"]["T_i"]] + [float(r["T"]) for r in rows]  # from the stress-free start
 
 fig, (left, right) = plt.subplots(1, 2, figsize=(11, 5), width_ratios=[3, 2])

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <gelx/io/parameters.h>
+#include <gelx/io/units.h>
 
 #include <chrono>
 #include <cmath>
@@ -155,7 +156,7 @@ int main(int argc, char* argv[])
     std::ofstream(out / "scene.txt") << "# gelx-flory_rehner: ./gelx run flory_rehner --scene "
                                         "scene.txt runs it again\n"
                                      << prm.scene_file(omit);
-    summary = {{"parameters", prm.to_json()}};
+    summary = {{"scene", "flory_rehner"}, {"parameters", prm.to_json()}};
     const auto t_start = std::chrono::steady_clock::now();
 
     // 3. Fig. 4.2b: A_max(phi_i, eps_par) for each N nu/V_m.
@@ -190,7 +191,8 @@ int main(int argc, char* argv[])
       const double T_lo = prm.real("peo_T_min"), T_hi = prm.real("peo_T_max");
       const double lambda_c = std::cbrt(1.0 / prm.real("peo_curve_phi_c"));
       std::ofstream curves(out / "peo_T_phi.csv");
-      curves << "phi,T_free,T_constrained\n";
+      curves << gelx::units_line({"phi", "T_free", "T_constrained"}, gelx::millimetre)
+             << "phi,T_free,T_constrained\n";
       for (double p : th::linspace(0.01, 0.6, 120))
       {
         const auto tf = th::peo_temperatures_free(peo, p, n_peo, T_lo, T_hi);
@@ -216,6 +218,7 @@ int main(int argc, char* argv[])
     // 7. Summary.
     summary["status"] = "completed";
     summary["seconds_total"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    summary["units"] = gelx::summary_units(summary, gelx::millimetre);
     std::ofstream(out / "summary.json") << summary.dump(2) << "\n";
     std::cout << "gelx-flory_rehner: results in " << out.string() << "\n";
     return 0;

@@ -13,7 +13,7 @@ import numpy as np  # noqa: E402
 
 
 def load_map(path):
-    d = np.genfromtxt(path, delimiter=",", names=True)
+    d = np.genfromtxt(path, delimiter=",", names=True, skip_header=1)  # past the units line
     phi = np.unique(d["phi_i"])
     eps = np.unique(d["eps_par"])
     A = d["A_max"].reshape(len(phi), len(eps))  # rows: phi_i, columns: eps (C order)
@@ -69,7 +69,7 @@ def main(out):
 
     curves = os.path.join(out, "peo_T_phi.csv")
     if os.path.exists(curves):
-        d = np.genfromtxt(curves, delimiter=",", names=True)
+        d = np.genfromtxt(curves, delimiter=",", names=True, skip_header=1)  # past the units
         fig, ax = plt.subplots(figsize=(4.8, 4))
         ax.plot(d["phi"], d["T_free"], "b.", ms=3, label="free")
         ax.plot(d["phi"], d["T_constrained"], "r.", ms=3, label="uniaxially constrained")

@@ -2,7 +2,6 @@
 
 usage: plot.py OUTPUT_DIR
 """
-import csv
 import json
 import pathlib
 import sys
@@ -12,8 +11,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from fields import read_table  # noqa: E402  (demos/fields.py)
+
 out = pathlib.Path(sys.argv[1])
-rows = list(csv.DictReader(open(out / "steps.csv")))
+rows = read_table(out / "steps.csv")
 s = json.loads((out / "summary.json").read_text())
 prm = s["parameters"]
 la = np.array([float(r["inner_stretch"]) for r in rows])

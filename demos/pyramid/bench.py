@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from studies import run_scene  # noqa: E402  (demos/studies.py)
 
 build, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
@@ -117,7 +118,7 @@ print("\n| cells | dofs | ranks | time to d/H = 0.34 (s) | time to d/H = 0.8 (s)
 print("| --- | --- | --- | --- | --- |")
 for r in rows:
     if r["order"] == 1 and r["cells"] in (3, 4):
-        steps = list(csv.DictReader(open(folder(1, r["cells"]) / "steps.csv")))
+        steps = read_table(folder(1, r["cells"]) / "steps.csv")
         reached = [next(float(s["elapsed"]) for s in steps if float(s["d_over_H"]) >= d - 1e-12)
                    for d in (0.34, 0.8)]
         print(f"| {r['cells']} | {r['dofs']} | 1 | {reached[0]:.1f} | {reached[1]:.1f} |")

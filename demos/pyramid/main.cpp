@@ -194,7 +194,7 @@ int main(int argc, char* argv[])
     gelx::scenes::PressedPyramid pyramid(run.comm(), g, m);
 
     // 3. Press, writing every step's fields, STL surface and measures
-    gelx::ResultsWriter& results = run.results(pyramid.mesh().mesh);
+    gelx::ResultsWriter& results = run.results(pyramid.mesh().mesh, gelx::micrometre);
     gelx::FieldSet fields;
     fields.add("cauchy_stress", pyramid.stress());
     fields.add("energy_density", pyramid.energy_density());
@@ -255,17 +255,10 @@ int main(int argc, char* argv[])
     // 4. The patch at the last step (x, y, nodal contact force, in contact), for the pressure
     //    map; measured here, as a run restarted from its last checkpoint took no step
     pyramid.measure();
-    const auto patch = pyramid.patch(); // collective; the nodes are on rank 0
-    if (dolfinx::MPI::rank(run.comm()) == 0)
-    {
-      gelx::replace_file(results.folder() / "patch.csv",
-                         [&](std::ostream& out)
-                         {
-                           out << "x,y,force,in_contact\n";
-                           for (const auto& [x, y, f, in_contact] : patch)
-                             out << x << "," << y << "," << f << "," << in_contact << "\n";
-                         });
-    }
+    std::vector<nlohmann::json> patch; // collective; the nodes are on rank 0
+    for (const auto& [x, y, f, in_contact] : pyramid.patch())
+      patch.push_back({{"x", x}, {"y", y}, {"force", f}, {"in_contact", in_contact}});
+    results.write_table("patch.csv", patch);
 
     // 5. The slope's discretisation error: the level set's corner is resolved to a fraction of
     //    the node spacing, so its slope converges at first order in the cell size h ~ 1/cells

@@ -2,7 +2,6 @@
 
 usage: plot.py OUTPUT_DIR
 """
-import csv
 import json
 import pathlib
 import sys
@@ -13,9 +12,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.tri as tri  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from fields import read_table  # noqa: E402  (demos/fields.py)
+
 out = pathlib.Path(sys.argv[1])
 s = json.loads((out / "summary.json").read_text())
-rows = [r for r in csv.DictReader(open(out / "steps.csv"))]
+rows = read_table(out / "steps.csv")
 d = np.array([float(r["d_over_H"]) for r in rows])
 lc = np.array([float(r["contact_width_over_L"]) for r in rows])
 f = np.array([float(r["force"]) for r in rows])
@@ -56,8 +58,8 @@ fig.tight_layout()
 fig.savefig(out / "pyramid.png", dpi=120)
 
 patch_file = out / "patch.csv"  # written at the end of the path: a stopped run has none
-patch = (np.loadtxt(patch_file, delimiter=",", skiprows=1, ndmin=2) if patch_file.is_file()
-         else np.zeros((0, 4)))
+patch = np.array([[float(r[k]) for k in ("x", "y", "force", "in_contact")]
+                  for r in read_table(patch_file)] if patch_file.is_file() else np.zeros((0, 4)))
 if len(patch) >= 3:
     # Contact pressure: each node's force over its tributary area, a third of the area of the
     # triangles around it in a triangulation of the candidate nodes (current x, y); the patch's

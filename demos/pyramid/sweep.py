@@ -17,6 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from studies import run_scene  # noqa: E402  (demos/studies.py)
 
 build, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
@@ -45,7 +46,7 @@ def run(study, label, parameters):
     args = [a for k, v in parameters.items() for a in (f"--{k}", str(v))]
     summary = run_scene(build, "pyramid", folder, 2,
                         ["--extrapolate", "false", *scene_options, *args], reuse=True)
-    rows = list(csv.DictReader(open(folder / "steps.csv")))
+    rows = read_table(folder / "steps.csv")
     return {"study": study, "label": label, "folder": folder.name,
             "d": np.array([float(r["d_over_H"]) for r in rows]),
             "lc": np.array([float(r["contact_width_over_L"]) for r in rows]),

@@ -259,11 +259,11 @@ nlohmann::json software_versions()
 
 ResultsWriter::ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
                              std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
-                             std::optional<ResultsProgress> keep)
+                             std::optional<ResultsProgress> keep, const Units& units)
     : _comm(comm), _folder(folder),
       _fields(comm, prepare_folder(comm, folder, keep.has_value()), *mesh,
               keep ? keep->field_steps : 0),
-      _root(dolfinx::MPI::rank(comm) == 0)
+      _root(dolfinx::MPI::rank(comm) == 0), _units(units)
 {
   if (keep)
     continue_steps(keep->rows);
@@ -276,7 +276,8 @@ void ResultsWriter::continue_steps(int rows)
   if (_root)
   {
     std::ifstream in(_folder / "steps.csv");
-    std::string header, line;
+    std::string units, header, line;
+    std::getline(in, units);
     std::getline(in, header);
     for (found = 0; found < rows && std::getline(in, line); ++found)
       _csv += line + "\n";
@@ -285,7 +286,7 @@ void ResultsWriter::continue_steps(int rows)
       std::istringstream names(header);
       for (std::string name; std::getline(names, name, ',');)
         _columns.push_back(name);
-      _csv = header + "\n" + _csv;
+      _csv = units + "\n" + header + "\n" + _csv;
       replace_file(_folder / "steps.csv", [&](std::ostream& file) { file << _csv; });
     }
     else
@@ -332,6 +333,7 @@ void ResultsWriter::append_step(const nlohmann::json& row)
   if (_columns.empty())
   {
     _columns = keys(row);
+    out << units_line(_columns, _units);
     write_csv_header(out, _columns);
   }
   write_csv_row(out, _columns, row);
@@ -349,6 +351,7 @@ void ResultsWriter::write_table(const std::string& file_name,
                [&](std::ostream& out)
                {
                  const auto columns = keys(rows.front());
+                 out << units_line(columns, _units);
                  write_csv_header(out, columns);
                  for (const auto& row : rows)
                    write_csv_row(out, columns, row);
@@ -363,6 +366,8 @@ void ResultsWriter::write_summary(const std::string& scene, const std::string& s
                      {"parameters", parameters.to_json()},
                      {"versions", software_versions()},
                      {"mpi_ranks", dolfinx::MPI::size(_comm)}});
+  quantities["unit_system"] = _units; // what the scene's lengths, forces, energies are in
+  quantities["units"] = summary_units(quantities, _units);
   if (_root)
     replace_file(_folder / "summary.json",
                  [&](std::ostream& out) { out << quantities.dump(2) << "\n"; });

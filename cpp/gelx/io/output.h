@@ -7,6 +7,7 @@
 /// fields.xdmf, steps.csv has one row per completed step.
 
 #include <gelx/io/field_series.h>
+#include <gelx/io/units.h>
 
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/Function.h>
@@ -135,21 +136,23 @@ public:
   /// `keep` (a restart), continues the results there after the first keep->field_steps steps
   /// of fields.xdmf and keep->rows rows of steps.csv, removing what was written beyond them
   /// (per-step files step_<k> with k > keep->rows included). Throws std::runtime_error when
-  /// the folder holds less. Collective.
+  /// the folder holds less. Quantities are written in `units` (units.h). Collective.
   ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
                 std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
-                std::optional<ResultsProgress> keep = std::nullopt);
+                std::optional<ResultsProgress> keep = std::nullopt,
+                const Units& units = millimetre);
 
   /// Append the fields at time (load factor) t to fields.xdmf as one step.
   void write_fields(double t,
                     const std::vector<std::shared_ptr<const dolfinx::fem::Function<double>>>& f);
 
   /// Append one row to steps.csv (columns from the first row's keys: `step` and the path's
-  /// coordinate, t, T, d_over_H, ..., first, then the rest alphabetically); the file is
-  /// replaced by its new version, so it always holds whole rows.
+  /// coordinate, t, T, d_over_H, ..., first, then the rest alphabetically; above the header, a
+  /// comment line with each column's unit, units_line); the file is replaced by its new
+  /// version, so it always holds whole rows.
   void append_step(const nlohmann::json& row);
 
-  /// Write a whole table (columns from the first row's keys) to folder/file_name.
+  /// Write a whole table (columns and units as steps.csv's) to folder/file_name.
   void write_table(const std::string& file_name, const std::vector<nlohmann::json>& rows);
 
   /// Write `text` to folder/file_name (rank 0; atomically). Collective.
@@ -160,7 +163,8 @@ public:
 
   /// Write summary.json (atomically: a reader never sees half a file): the run's record —
   /// scene, status ("completed" or "failed: why"), parameters, library versions, MPI ranks —
-  /// and the scene's `quantities`.
+  /// and the scene's `quantities`, with the unit of each under "units" (summary_units) and the
+  /// scene's Units under "unit_system" (the unit of its length parameters, too).
   void write_summary(const std::string& scene, const std::string& status,
                      const Parameters& parameters, nlohmann::json quantities);
 
@@ -181,6 +185,7 @@ private:
   std::string _csv; ///< steps.csv as written so far
   int _rows = 0;    ///< its rows
   bool _root;
+  Units _units;
 };
 
 

@@ -121,7 +121,7 @@ Run::Run(MPI_Comm comm, std::string scene, const Parameters& parameters,
 
 Run::~Run() = default;
 
-ResultsWriter& Run::results(std::shared_ptr<const dolfinx::mesh::Mesh> mesh)
+ResultsWriter& Run::results(std::shared_ptr<const dolfinx::mesh::Mesh> mesh, const Units& units)
 {
   if (_results)
     return *_results;
@@ -130,7 +130,8 @@ ResultsWriter& Run::results(std::shared_ptr<const dolfinx::mesh::Mesh> mesh)
     forget_old_checkpoints();
   else
     keep = _restart_record.at("run").value("results", ResultsProgress{});
-  _results = std::make_unique<ResultsWriter>(_comm, _parameters.text("output"), mesh, keep);
+  _results
+      = std::make_unique<ResultsWriter>(_comm, _parameters.text("output"), mesh, keep, units);
   // The run's scene file: what --scene needs to run it again, to the last digit on as many
   // ranks. The folder and the restart are where a run goes, not what it computes.
   const nlohmann::json versions = software_versions();

@@ -44,9 +44,11 @@ public:
   ~Run();
 
   MPI_Comm comm() const { return _comm; }
-  /// The writer of the results folder (--output) for `mesh`, made at the first call; on a
-  /// restart it continues the folder's outputs after the checkpoint's.
-  ResultsWriter& results(std::shared_ptr<const dolfinx::mesh::Mesh> mesh);
+  /// The writer of the results folder (--output) for `mesh`, made at the first call, writing
+  /// quantities in `units`; on a restart it continues the folder's outputs after the
+  /// checkpoint's.
+  ResultsWriter& results(std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
+                         const Units& units = millimetre);
   /// Seconds since the run started.
   double elapsed() const;
 

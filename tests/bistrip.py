@@ -46,7 +46,8 @@ A clamped run (Table 3.1) checks:
   whose end force is checked against uniaxial stress with the other outputs at rest; a gradient
   flow only lowers the energy: SE_A + SE_B never rises over the leg's outputs (to 1e-12 of SE,
   round-off). A leg that did not run, or ran the inertial integrator again, keeps the path's
-  residual and fails;
+  residual and fails. Its steps are numbered over both legs (the last is the sum of the legs'
+  step counts in the summary; failed when the settle leg counted from 1 again);
 - summary.json's time split: no part negative, assembly and solve measured (checks.time_split);
 - regression, next to those: the coarse mesh's first critical shortening (stored from this
   mesh, 1e-8: the eigenvalue is converged to 1e-10 by SLEPc and the mesh is fixed) and within
@@ -56,7 +57,6 @@ A clamped run (Table 3.1) checks:
 
 usage: bistrip.py OUTPUT_DIR
 """
-import csv
 import json
 import math
 import pathlib
@@ -67,6 +67,7 @@ import numpy as np
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 from closed_forms import bisect  # noqa: E402
 
 out = pathlib.Path(sys.argv[1])
@@ -93,7 +94,7 @@ def uniaxial(stretch):
 
 
 def rows(name):
-    return list(csv.DictReader(open(out / name)))
+    return read_table(out / name)
 
 
 def layered_beam_curvature(layers, misfit):
@@ -244,6 +245,13 @@ if prm["settle_time"] > 0:
         checks.require(f"the strain energy never rises over the flow: largest change {rise:.3g}"
                        f" mJ of SE = {energy[0]:.6g} mJ (drop {energy[0] - energy[-1]:.3g})",
                        rise <= 1e-12 * energy[0])
+        # One step numbering over the legs: steps.csv's `step` counts the steps of every leg
+        # (each leg's TS counts its own, in the summary), not again from 1 at the settle leg
+        numbers = [int(r["step"]) for r in steps]
+        taken = sum(v["steps"] for k, v in summary.items() if k.endswith("dynamics"))
+        checks.require(f"steps numbered over the legs: {numbers[0]} ... {numbers[-1]}, rising, "
+                       f"the last the legs' {taken} steps",
+                       all(a < b for a, b in zip(numbers, numbers[1:])) and numbers[-1] == taken)
 
 helices = summary["helices"]
 slab = prm["L"] / prm["nz"]

@@ -146,7 +146,9 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
                        inertia ? r.kinetic_energy : 0.0,
                        (end_held && r.step.step % 10 == 0) || r.time >= end_time - 1e-12);
       run.summary[key] = so_far.to_json();
-      progress.print(r.step, strip.end_distance(), r.time / end_time);
+      StepRecord step = r.step; // numbered over the legs, as steps.csv is
+      step.step = record.steps();
+      progress.print(step, strip.end_distance(), r.time / end_time);
     };
     // Either integrator: observed, checkpointed after every step, resumed by the first leg
     auto follow = [&](auto& dynamics)

@@ -87,6 +87,7 @@ nlohmann::json PathRecord::state() const
           {"work", _work},                     {"last_force", _last_force},
           {"last_distance", _last_distance},   {"travelled", _travelled},
           {"next_output", _next_output},       {"output_step", _output_step},
+          {"steps", _steps},
           {"leg", _leg},                       {"negative_eigenvalues", _negative},
           {"centreline_rows", _centreline_rows}, {"slab_rows", _slab_rows}};
 }
@@ -101,6 +102,7 @@ void PathRecord::restore(const nlohmann::json& state)
   _travelled = state.at("travelled");
   _next_output = state.at("next_output");
   _output_step = state.at("output_step");
+  _steps = state.at("steps");
   _leg = state.at("leg");
   _negative = state.at("negative_eigenvalues");
   _centreline_rows = state.at("centreline_rows").get<std::vector<nlohmann::json>>();
@@ -113,6 +115,7 @@ void PathRecord::restore(const nlohmann::json& state)
 void PathRecord::step_done(const nlohmann::json& method_row, double dissipated, double kinetic,
                            bool output_now)
 {
+  ++_steps;
   const double force = _strip.end_force(), d = _strip.end_distance();
   _work += 0.5 * (force + _last_force) * (d - _last_distance);
   _travelled += std::abs(d - _last_distance);
@@ -149,7 +152,8 @@ void PathRecord::output(nlohmann::json row, double dissipated, double kinetic)
     radius += h.radius * (h.end - h.start);
     length += h.end - h.start;
   }
-  row.update({{"leg", _leg},
+  row.update({{"step", _steps},
+              {"leg", _leg},
               {"end_distance", d},
               {"end_force", _last_force},
               {"strain_energy_A", energy_A},
@@ -175,7 +179,6 @@ void PathRecord::output(nlohmann::json row, double dissipated, double kinetic)
               {"energy_peak_width", e.width()},
               {"energy_peak_anywhere", peak_anywhere},
               {"output", _output_step},
-              {"leg", _leg},
               {"elapsed", _run.elapsed()}});
   _results.append_step(row);
   // Stamped with the output's number, not its end distance, which goes down and back up

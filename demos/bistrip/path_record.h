@@ -64,7 +64,8 @@ public:
   /// path begins one (or restores a record, restore()) before its first step.
   void begin_leg(int leg);
 
-  /// After every step: `method_row` what the path's method says of it, `dissipated` the
+  /// After every step: `method_row` what the path's method says of it (its `step` is
+  /// replaced by the run's: steps are counted over all legs), `dissipated` the
   /// energy its damping has dissipated so far on legs 1 and 2 and `kinetic` the kinetic
   /// energy now (0 without inertia: the balance is W = dSE + KE + ED), `output_now` an
   /// output besides those by travel (the last step of a leg, a held leg's every tenth).
@@ -81,6 +82,8 @@ public:
   nlohmann::json state() const;
   void restore(const nlohmann::json& state);
   int leg() const { return _leg; }
+  /// Steps taken so far, over all legs: the run's step numbering
+  int steps() const { return _steps; }
 
   /// The energy density over three cross-sections of the state of the last output (Fig. 3.6):
   /// the perversion nearest mid-length, its edge and the helix beyond it (sections.csv);
@@ -100,7 +103,7 @@ private:
   double _energy_A0 = 0, _energy_B0 = 0; ///< the strips' energies the balance starts from
   double _work = 0, _last_force = 0, _last_distance = 0;
   double _travelled = 0, _next_output = 0;
-  int _output_step = 0, _leg = 1, _negative = -1;
+  int _steps = 0, _output_step = 0, _leg = 1, _negative = -1;
   std::vector<nlohmann::json> _centreline_rows, _slab_rows;
   CentrelineAnalysis _analysis;
   Condensation _condensation;

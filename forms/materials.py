@@ -25,6 +25,18 @@ def neo_hookean_compressible(F, G, K):
     return G / 2 * (I1_bar - 3) + K / 2 * (J - 1)**2
 
 
+def neo_hookean_log(F, G, K):
+    """Compressible neo-Hookean solid with a logarithmic volumetric term (the law of dolfinx's
+    hyperelasticity demo),
+        U = G/2 (tr C - 3) - G ln J + lambda/2 (ln J)^2,   lambda = K - 2G/3,
+    G the shear and K the bulk modulus at small strain, as for neo_hookean_compressible; it
+    differs from Eq. 3.1 at finite volume change (U grows without bound as J -> 0).
+    """
+    J = ufl.det(F)
+    lame = K - 2 * G / 3
+    return G / 2 * (ufl.tr(F.T * F) - 3) - G * ufl.ln(J) + lame / 2 * ufl.ln(J)**2
+
+
 def first_piola(psi, F):
     """P = dpsi/dF."""
     return ufl.diff(psi, F)

@@ -80,15 +80,15 @@ int main(int argc, char* argv[])
       const gelx::TaggedMesh geo = gelx::read_geo(comm, GELX_MESHES "/block.geo",
                                                   {{"W", 1.0}, {"H", 2.0}, {"h", h}});
       auto V = std::make_shared<fem::FunctionSpace>(
-          fem::create_functionspace(functionspace_form_block_residual_p2, "u_p2", geo.mesh));
+          fem::create_functionspace(functionspace_form_block_residual_nh_p2, "u_p2", geo.mesh));
       auto u = std::make_shared<fem::Function<double>>(V);
       const std::map<std::string, std::shared_ptr<const fem::Constant<double>>> material
           = {{"G", std::make_shared<fem::Constant<double>>(1.0)},
              {"K", std::make_shared<fem::Constant<double>>(10.0)}};
       auto residual = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-          *form_block_residual_p2, {V}, {{"u_p2", u}}, material, {}, geo.mesh));
+          *form_block_residual_nh_p2, {V}, {{"u_p2", u}}, material, {}, geo.mesh));
       auto tangent = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-          *form_block_tangent_p2, {V, V}, {{"u_p2", u}}, material, {}, geo.mesh));
+          *form_block_tangent_nh_p2, {V, V}, {{"u_p2", u}}, material, {}, geo.mesh));
 
       // 2. Bottom clamped; top lifted by 0.3 H t and turned by 45 t degrees (the scene test's
       //    --stretch 1.3 --twist 45), at the first load step t = 0.1

@@ -151,12 +151,12 @@ Cell pinned_cell(MPI_Comm comm, Element element, std::size_t n)
     const bool p1 = element == Element::p1;
     const std::string name = p1 ? "u_p1" : "u_p2";
     cell.V = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-        p1 ? functionspace_form_block_residual_p1 : functionspace_form_block_residual_p2, name,
+        p1 ? functionspace_form_block_residual_nh_p1 : functionspace_form_block_residual_nh_p2, name,
         box.mesh));
     cell.u = std::make_shared<fem::Function<double>>(cell.V);
     const auto material = make_constants({{"G", G}, {"K", K}});
-    cell.forms = make_forms(p1 ? form_block_residual_p1 : form_block_residual_p2,
-                            p1 ? form_block_tangent_p1 : form_block_tangent_p2, cell.V,
+    cell.forms = make_forms(p1 ? form_block_residual_nh_p1 : form_block_residual_nh_p2,
+                            p1 ? form_block_tangent_nh_p1 : form_block_tangent_nh_p2, cell.V,
                             {{name, cell.u}}, const_constants(material));
     cell.displacement = cell.V;
   }

@@ -100,11 +100,11 @@ Solution solve(MPI_Comm comm, Element element, Variant variant)
     const bool p1 = element == Element::p1;
     const std::string name = p1 ? "u_p1" : "u_p2";
     W = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
-        p1 ? functionspace_form_block_residual_p1 : functionspace_form_block_residual_p2, name,
+        p1 ? functionspace_form_block_residual_nh_p1 : functionspace_form_block_residual_nh_p2, name,
         box.mesh));
     w = std::make_shared<fem::Function<double>>(W);
-    forms = make_forms(p1 ? form_block_residual_p1 : form_block_residual_p2,
-                       p1 ? form_block_tangent_p1 : form_block_tangent_p2, W, {{name, w}},
+    forms = make_forms(p1 ? form_block_residual_nh_p1 : form_block_residual_nh_p2,
+                       p1 ? form_block_tangent_nh_p1 : form_block_tangent_nh_p2, W, {{name, w}},
                        const_constants(make_constants({{"G", G}, {"K", K}})));
   }
   std::shared_ptr<const fem::FunctionSpace> displacement

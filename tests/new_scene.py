@@ -17,7 +17,6 @@ the duplicate target), or when the edit does not reach the scene (ratio 1).
 
 usage: new_scene.py WORK_DIR
 """
-import csv
 import json
 import os
 import pathlib
@@ -26,6 +25,9 @@ import subprocess
 import sys
 
 from checks import Checks
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 
 work = pathlib.Path(sys.argv[1])
 source = pathlib.Path(__file__).resolve().parents[1]
@@ -44,8 +46,8 @@ def gelx(*words, timeout=1800):
 
 
 def forces(scene):
-    with open(tree / "results" / scene / "steps.csv") as f:
-        return [(float(r["axial_force"]), float(r["torque"])) for r in csv.DictReader(f)]
+    return [(float(r["axial_force"]), float(r["torque"]))
+            for r in read_table(tree / "results" / scene / "steps.csv")]
 
 
 def finish_if(failed, what, p):
@@ -83,8 +85,8 @@ checks.require(f"cyl's {len(cyl)} steps of axial force and torque are the block'
 # 3. Its law doubled, in its own form file only
 law = tree / "forms" / "cyl.py"
 text = law.read_text()
-edited = text.replace("psi = materials.neo_hookean_compressible(F, G, K)",
-                      "psi = 2 * materials.neo_hookean_compressible(F, G, K)")
+edited = text.replace('"nh": lambda F: materials.neo_hookean_compressible(F, G, K)',
+                      '"nh": lambda F: 2 * materials.neo_hookean_compressible(F, G, K)')
 checks.require("forms/cyl.py has the block's law to edit", edited != text)
 law.write_text(edited)
 p = gelx("run", "cyl", *RUN)

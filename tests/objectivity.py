@@ -74,6 +74,7 @@ n, phi0, chi, kT_nu = 0.02, 0.3, 0.5, 1.0
 nh = materials.neo_hookean_compressible
 objective_laws = {
     "neo_hookean_compressible": lambda F: nh(F, G, K),
+    "neo_hookean_log": lambda F: materials.neo_hookean_log(F, G, K),
     "mooney_rivlin_compressible": lambda F: materials.mooney_rivlin_compressible(F, C10, C01, K),
     "neo_hookean_incompressible (fixed p)":
         lambda F: materials.neo_hookean_incompressible(F, p_constant, G, bulk_compliance),

@@ -9,13 +9,13 @@ must differ: the comparison can fail, and the command line overrides the file.
 
 scene.txt also records what the run was computed from, by content: the SHA-256 of every form
 file the kernels were compiled with and of the mesh file, each checked here against the file in
-the tree. A replay whose record has another forms/materials.py (a law edited since), lacks one
+the tree. It names no path of the checkout it ran in (a project mesh by its name in meshes/),
+so that it replays in another. A replay whose record has another forms/materials.py (a law edited since), lacks one
 of the program's form files, or names a mesh file edited since is refused in one line with no
 results written.
 
 usage: replay.py MPIEXEC RANKS EXE OUT_DIR CHANGE_NAME CHANGE_VALUE [scene options...]
 """
-import csv
 import hashlib
 import json
 import pathlib
@@ -25,6 +25,9 @@ import subprocess
 import sys
 
 from checks import Checks
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 
 mpiexec, ranks, exe, out, change_name, change_value = sys.argv[1:7]
 options = sys.argv[7:]
@@ -46,8 +49,8 @@ def run(name, *args):
 
 def numbers(folder):
     """Every value of steps.csv and summary.json but times, memory and the output folder"""
-    with open(folder / "steps.csv") as f:
-        rows = [{k: v for k, v in r.items() if not TIMES.search(k)} for r in csv.DictReader(f)]
+    rows = [{k: v for k, v in r.items() if not TIMES.search(k)}
+            for r in read_table(folder / "steps.csv")]
     summary = json.loads((folder / "summary.json").read_text())
 
     def strip(d):
@@ -93,11 +96,26 @@ modules = {f"forms/{p.name}" for p in (source_tree / "forms").glob("_*.py")} | {
 forms = {p for p in recorded if p.startswith("forms/")}
 checks.require(f"scene.txt records the form modules {sorted(modules)} and the scene's form "
                f"files {sorted(forms - modules)}", modules < forms)
+
+
+def in_tree(path):
+    """A recorded file: forms/... in the source tree, a bare name in meshes/, else the path"""
+    if path.startswith("forms/"):
+        return source_tree / path
+    return source_tree / "meshes" / path if "/" not in path else pathlib.Path(path)
+
+
 for path, digest in recorded.items():
-    file = source_tree / path if path.startswith("forms/") else pathlib.Path(path)
+    file = in_tree(path)
     actual = hashlib.sha256(file.read_bytes()).hexdigest()
     checks.require(f"recorded SHA-256 of {path} is the file's ({digest[:12]}..., {actual[:12]}...)",
                    digest == actual)
+
+
+# A record for any checkout: no file named by a path of this one (the default mesh by its name
+# in meshes/; a scene file that named /.../meshes/block.geo replayed only here)
+checks.require(f"scene.txt names no path of this checkout ({source_tree})",
+               str(source_tree) not in scene)
 
 
 def refused(name, scene_text, expect):
@@ -130,7 +148,7 @@ refused("replay_form_not_recorded", re.sub(rf"^source {re.escape(form)} = .*\n",
 if "mesh" in declared:
     mesh = re.search(r"^mesh = (.*)$", scene, re.M)[1]
     copy = out / "mesh_copy.geo"
-    copy.write_bytes(pathlib.Path(mesh).read_bytes())
+    copy.write_bytes(in_tree(mesh).read_bytes())
     meshed = run("mesh_copy", "--scene", str(first / "scene.txt"), "--mesh", str(copy))
     copy.write_bytes(copy.read_bytes() + b"// edited after the run\n")
     refused("replay_edited_mesh", (meshed / "scene.txt").read_text(),

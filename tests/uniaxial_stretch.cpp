@@ -60,21 +60,21 @@ int main(int argc, char* argv[])
     auto box = gelx::test::tagged_box(comm, L, {2, 2, 4});
 
     auto V = std::make_shared<fem::FunctionSpace>(
-        fem::create_functionspace(functionspace_form_block_residual_p2, "u_p2", box.mesh));
+        fem::create_functionspace(functionspace_form_block_residual_nh_p2, "u_p2", box.mesh));
     auto u = std::make_shared<fem::Function<double>>(V);
     const std::map<std::string, std::shared_ptr<const fem::Constant<double>>> material
         = {{"G", std::make_shared<fem::Constant<double>>(G)},
            {"K", std::make_shared<fem::Constant<double>>(K)}};
     auto residual = std::make_shared<fem::Form<double>>(
-        fem::create_form<double>(*form_block_residual_p2, {V}, {{"u_p2", u}}, material, {}));
+        fem::create_form<double>(*form_block_residual_nh_p2, {V}, {{"u_p2", u}}, material, {}));
     auto tangent = std::make_shared<fem::Form<double>>(
-        fem::create_form<double>(*form_block_tangent_p2, {V, V}, {{"u_p2", u}}, material, {}));
+        fem::create_form<double>(*form_block_tangent_nh_p2, {V, V}, {{"u_p2", u}}, material, {}));
     auto expression = [&](ufcx_expression* e)
     {
       return std::make_shared<fem::Expression<double>>(
           fem::create_expression<double>(*e, {{"u_p2", u}}, material, box.mesh));
     };
-    gelx::CellField stress("sigma", expression(expression_block_stress_p2));
+    gelx::CellField stress("sigma", expression(expression_block_stress_nh_p2));
 
     for (double lambda : {1.5, 0.7}) // tension and compression
     {

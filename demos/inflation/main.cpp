@@ -52,13 +52,13 @@ int main(int argc, char* argv[])
 {
   // 1. Scene parameters
   gelx::scenes::ShellParameters p;
-  std::string mesh = GELX_MESHES "/sphere_shell.geo";
+  std::string mesh = "sphere_shell.geo"; // meshes/sphere_shell.geo
   Continuation c;
   gelx::Parameters prm;
   prm.bind("geometry", "A", p.A, "inner radius", gelx::Parameters::positive);
   prm.bind("geometry", "B", p.B, "outer radius (> A)", gelx::Parameters::positive);
   prm.bind("geometry", "h", p.h, "mesh size", gelx::Parameters::positive);
-  prm.bind("geometry", "mesh", mesh, "gmsh geometry file");
+  prm.bind("geometry", "mesh", mesh, "gmsh geometry file (a path, or a file of meshes/)");
   prm.bind("geometry", "symmetry", p.symmetry,
            "rollers (Dirichlet) or constraints (multipoint) on the three symmetry planes",
            [](const std::string& v)

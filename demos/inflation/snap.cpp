@@ -166,8 +166,7 @@ int main(int argc, char* argv[])
 
     // 2. The shell, and the closed form's landmarks
     if (mesh.empty())
-      mesh = std::string(GELX_MESHES) + (p.domain == "sector" ? "/sphere_sector.geo"
-                                                               : "/sphere_shell.geo");
+      mesh = p.domain == "sector" ? "sphere_sector.geo" : "sphere_shell.geo"; // in meshes/
     InflatedShell shell(run.comm(), mesh, p);
     gelx::ResultsWriter& results = run.results(shell.mesh().mesh);
     run.summary = {

@@ -290,9 +290,14 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
                     const std::map<std::string, double>& numbers,
                     const std::vector<int>& mirror_axes)
 {
-  if (!std::filesystem::is_regular_file(geo_file))
+  const std::filesystem::path in_project = std::filesystem::path(GELX_MESHES) / geo_file;
+  const std::string file = std::filesystem::is_regular_file(geo_file)
+                                   || std::filesystem::path(geo_file).has_parent_path()
+                               ? geo_file
+                               : in_project.string();
+  if (!std::filesystem::is_regular_file(file))
     throw InputError("mesh file '" + geo_file + "' not found");
-  record_input_file(geo_file);
+  record_input_file(file, geo_file);
   try
   {
     std::vector<std::string> args;
@@ -303,7 +308,7 @@ TaggedMesh read_geo(MPI_Comm comm, const std::string& geo_file,
       text << std::setprecision(17) << value;
       args.insert(args.end(), {"-setnumber", name, text.str()});
     }
-    return mesh_gmsh_model(comm, [&]() { gmsh::open(geo_file); }, args, mirror_axes);
+    return mesh_gmsh_model(comm, [&]() { gmsh::open(file); }, args, mirror_axes);
   }
   catch (const InputError& e) // on every rank (mesh_gmsh_model)
   {
@@ -441,7 +446,7 @@ void require_span(const std::array<std::array<double, 3>, 2>& box, int axis, dou
 }
 
 TaggedMesh box_mesh(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n,
-                    dolfinx::mesh::CellType cell)
+                    dolfinx::mesh::CellType cell, std::array<double, 3> origin)
 {
   TimedStage timing("mesh");
   const double tetrahedra_a_box = cell == dolfinx::mesh::CellType::tetrahedron ? 6 : 1;
@@ -451,7 +456,8 @@ TaggedMesh box_mesh(MPI_Comm comm, std::array<double, 3> L, std::array<std::size
                                              + std::to_string(n[1]) + " x "
                                              + std::to_string(n[2]) + " cells");
   auto mesh = std::make_shared<dolfinx::mesh::Mesh>(dolfinx::mesh::create_box(
-      comm, {{{0, 0, 0}, {L[0], L[1], L[2]}}}, n, cell, dolfinx::mesh::GhostMode::shared_facet));
+      comm, {{origin, {origin[0] + L[0], origin[1] + L[1], origin[2] + L[2]}}}, n, cell,
+      dolfinx::mesh::GhostMode::shared_facet));
   const int fdim = 2;
   mesh->topology_mutable().create_entities(fdim);
   mesh->topology_mutable().create_connectivity(fdim, 3);
@@ -464,7 +470,7 @@ TaggedMesh box_mesh(MPI_Comm comm, std::array<double, 3> L, std::array<std::size
     {
       const int tag = 2 * axis + side + 1;
       box.names[std::string(1, axes[axis]) + (side ? "_max" : "_min")] = tag;
-      const double plane = side * L[axis], tol = 1e-10 * L[axis];
+      const double plane = origin[axis] + side * L[axis], tol = 1e-10 * L[axis];
       auto facets = dolfinx::mesh::locate_entities_boundary(
           *mesh, fdim,
           [&](const xt::xtensor<double, 2>& x) -> xt::xtensor<bool, 1>

@@ -31,6 +31,10 @@ struct TaggedMesh
 
 /// Mesh the `.geo` file with gmsh on rank 0 and distribute it over `comm`.
 ///
+/// `geo_file` is a path, or the name of a file in the project's meshes/ folder (block.geo):
+/// a scene's default mesh is named so, and a run records it so (scene.txt, with the file's
+/// SHA-256), which makes the record replay in any checkout, not only in the one it ran in.
+///
 /// `numbers` overrides the file's `DefineConstant`/variables (gmsh `-setnumber`), so a
 /// scene's geometry parameters reach the mesh without editing the file. Physical volumes become
 /// cell tags and physical surfaces facet tags. Linear tetrahedra and hexahedra are supported.
@@ -64,10 +68,12 @@ std::array<std::array<double, 3>, 2> bounding_box(const dolfinx::mesh::Mesh& mes
 void require_span(const std::array<std::array<double, 3>, 2>& box, int axis, double lower,
                   double upper, const std::string& parameter);
 
-/// Box [0, L0] x [0, L1] x [0, L2] with n cells along each edge (tetrahedra: six a box cell)
-/// and its faces tagged x_min = 1, x_max = 2, y_min = 3, y_max = 4, z_min = 5, z_max = 6
-/// (`names` holds them): for prismatic scenes (columns, blocks) and verification tests.
+/// Box [0, L0] x [0, L1] x [0, L2] (shifted by `origin`) with n cells along each edge
+/// (tetrahedra: six a box cell, dolfinx's create_box) and its faces tagged x_min = 1,
+/// x_max = 2, y_min = 3, y_max = 4, z_min = 5, z_max = 6 (`names` holds them): for prismatic
+/// scenes (columns, blocks) and verification tests.
 TaggedMesh box_mesh(MPI_Comm comm, std::array<double, 3> L, std::array<std::size_t, 3> n,
-                    dolfinx::mesh::CellType cell = dolfinx::mesh::CellType::tetrahedron);
+                    dolfinx::mesh::CellType cell = dolfinx::mesh::CellType::tetrahedron,
+                    std::array<double, 3> origin = {0, 0, 0});
 
 } // namespace gelx

@@ -65,15 +65,16 @@ Sources run_sources()
   return all;
 }
 
-void record_input_file(const std::string& path)
+void record_input_file(const std::string& path, const std::string& name)
 {
+  const std::string key = name.empty() ? path : name;
   const std::string hash = sha256_of_file(path);
-  if (const auto expected = expected_files().find(path);
+  if (const auto expected = expected_files().find(key);
       expected != expected_files().end() && expected->second != hash)
-    throw InputError("'" + path + "' is not the file " + expected_origin + " read (its SHA-256 "
+    throw InputError("'" + key + "' is not the file " + expected_origin + " read (its SHA-256 "
                      + abbreviated(hash) + "..., recorded " + abbreviated(expected->second)
                      + "...): the run would not replay");
-  read_files()[path] = hash;
+  read_files()[key] = hash;
 }
 
 void expect_sources(const Sources& recorded, const std::string& origin,

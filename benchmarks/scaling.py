@@ -51,7 +51,7 @@ PROBLEMS = {
         "solvers": {"direct": [],
                     "amg": ["-newton_linear_solver", "amg"],
                     "amg+ew": ["-newton_linear_solver", "amg", "-newton_snes_ksp_ew"]},
-        "answer": "energy",
+        "answer": "strain_energy",
     },
     "pyramid": {
         "options": ["--order", "1", "--d_max", "0.05", "--dt", "0.5", "--dt_max", "0.5",

@@ -34,7 +34,7 @@ from fields import FieldSeries, read_table  # noqa: E402  (demos/fields.py)
 
 library, work, binary = sys.argv[1], pathlib.Path(sys.argv[2]), sys.argv[3]
 options = sys.argv[4:]
-COLUMNS = ["t", "axial_force", "torque", "energy"]
+COLUMNS = ["t", "axial_force", "torque", "strain_energy"]
 SAME_RTOL = 1e-10
 checks = Checks()
 shutil.rmtree(work, ignore_errors=True)

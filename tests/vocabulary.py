@@ -125,7 +125,7 @@ for run in map(pathlib.Path, sys.argv[1:]):
             checks.require(f"{name} is [{scene_units[key][0]}] in {scene_units[key][1]} and "
                            f"[{unit}] in {run.name}", False)
     if scene["scene"] == "block":
-        check_work(run, "energy", block_work)
+        check_work(run, "strain_energy", block_work)
     if scene["scene"] == "pyramid":
         check_work(run, "strain_energy", pyramid_work)
 checks.finish()

@@ -70,7 +70,7 @@ checks.absolute("max |u| over the clamped bottom nodes", np.abs(u[bottom]).max()
 t = np.array([0.0] + [float(r["t"]) for r in rows])
 power = np.array([0.0] + [float(r["axial_force"]) * (stretch - 1) * H + float(r["torque"]) * twist
                           for r in rows])
-energy = np.array([0.0] + [float(r["energy"]) for r in rows])
+energy = np.array([0.0] + [float(r["strain_energy"]) for r in rows])
 checks.require(f"{len(rows)} steps, enough to integrate the power (>= 4)", len(rows) >= 4)
 antiderivative = np.polyint(np.polyfit(t, power, len(t) - 1))
 work = np.polyval(antiderivative, t) - np.polyval(antiderivative, 0.0)

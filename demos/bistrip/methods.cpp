@@ -99,7 +99,7 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
          {
            record.step_done({{"step", pt.step},
                              {"arc_length", pt.arc_length},
-                             {"iterations", pt.newton.iterations},
+                             {"newton_iterations", pt.newton.iterations},
                              {"cutbacks", pt.cutbacks},
                              {"wall_time", pt.wall_time}},
                             0.0, 0.0, pt.load >= travel);

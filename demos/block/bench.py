@@ -35,11 +35,11 @@ for degree, h in runs:
     s = json.loads((folder / "summary.json").read_text())
     rows.append({"degree": degree, "h": h, "num_dofs": s["num_dofs"], "steps": s["steps"],
                  "newton_iterations": s["newton_iterations"], "wall_time": s["wall_time"],
-                 "energy": s["energy"], "torque": s["torque"]})
+                 "strain_energy": s["strain_energy"], "torque": s["torque"]})
 
 ref = next(r for r in rows if (r["degree"], r["h"]) == reference_run)
 for r in rows:
-    for q in ("energy", "torque"):
+    for q in ("strain_energy", "torque"):
         r[f"{q}_error"] = abs(r[q] / ref[q] - 1) if r is not ref else float("nan")
 
 out.mkdir(parents=True, exist_ok=True)
@@ -54,11 +54,11 @@ print(" p      h    dofs  steps  newton   wall [s]    energy           err      
       "           err")
 for r in rows:
     print(f"{r['degree']:2d} {r['h']:6.3f} {r['num_dofs']:7d} {r['steps']:6d} "
-          f"{r['newton_iterations']:7d} {r['wall_time']:10.2f}  {r['energy']:.10f} "
-          f"{r['energy_error']:9.2e}  {r['torque']:.10f} {r['torque_error']:9.2e}")
+          f"{r['newton_iterations']:7d} {r['wall_time']:10.2f}  {r['strain_energy']:.10f} "
+          f"{r['strain_energy_error']:9.2e}  {r['torque']:.10f} {r['torque_error']:9.2e}")
 
 fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-for ax, q in zip(axes, ("energy", "torque")):
+for ax, q in zip(axes, ("strain_energy", "torque")):
     for degree, marker in ((1, "o"), (2, "s")):
         pts = [r for r in rows if r["degree"] == degree and r is not ref]
         ax.loglog([r["wall_time"] for r in pts], [r[f"{q}_error"] for r in pts],

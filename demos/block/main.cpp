@@ -170,7 +170,7 @@ int main(int argc, char* argv[])
                 const nlohmann::json quantities = {
                     {"axial_force", load.force[2]},
                     {"torque", load.moment[2]},
-                    {"energy", gelx::assemble_global_scalar(*energy)},
+                    {"strain_energy", gelx::assemble_global_scalar(*energy)},
                     {"min_det_F", problem.admissibility_margin()}};
                 results.write_fields(s.load, fields.update());
                 nlohmann::json row = {{"step", s.step},

@@ -158,7 +158,7 @@ int main(int argc, char* argv[])
                            {"deflection_over_L", deflection},
                            {"elastica_load_over_euler",
                             P_cr * column.elastica_load_ratio(deflection)},
-                           {"iterations", pt.newton.iterations},
+                           {"newton_iterations", pt.newton.iterations},
                            {"cutbacks", pt.cutbacks},
                            {"stability", std::isnan(pt.stability) ? nlohmann::json(nullptr)
                                                                   : nlohmann::json(pt.stability)},

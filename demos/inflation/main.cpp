@@ -152,7 +152,7 @@ int main(int argc, char* argv[])
                                 {"inner_stretch", la},
                                 {"closed_form_pressure_over_G",
                                  gelx::scenes::InflatedShell::closed_form_pressure(p, la) / p.G},
-                                {"iterations", pt.newton.iterations},
+                                {"newton_iterations", pt.newton.iterations},
                                 {"cutbacks", pt.cutbacks},
                                 {"limit_point", pt.limit_point},
                                 {"asphericity", departure},

@@ -220,7 +220,7 @@ int main(int argc, char* argv[])
             {
               point(stepped, s.load * target,
                     {{"step", s.step},
-                     {"iterations", s.newton.iterations},
+                     {"newton_iterations", s.newton.iterations},
                      {"cutbacks", s.cutbacks},
                      {"wall_time", s.wall_time}});
               progress(s, state);
@@ -304,7 +304,7 @@ int main(int argc, char* argv[])
              point(continued, pt.load,
                    {{"step", pt.step},
                     {"arc_length", pt.arc_length},
-                    {"iterations", pt.newton.iterations},
+                    {"newton_iterations", pt.newton.iterations},
                     {"cutbacks", pt.cutbacks},
                     {"limit_point", pt.limit_point},
                     {"wall_time", pt.wall_time}});

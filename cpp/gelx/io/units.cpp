@@ -82,7 +82,7 @@ const std::map<std::string, Dimension>& dimensions()
       {"elastica_at_imperfect_end", D::none}, {"stability", D::none},
       {"stability_at_switch", D::none},
       // Energies (an energy_* without unit is Ẽ, the slab energy over its least value)
-      {"energy", D::energy}, {"strain_energy", D::energy}, {"strain_energy_A", D::energy},
+      {"strain_energy", D::energy}, {"strain_energy_A", D::energy},
       {"strain_energy_B", D::energy}, {"strain_energy_change", D::energy},
       {"energy_A", D::energy}, {"energy_B", D::energy}, {"energy_difference", D::energy},
       {"prebuckled_strain_energy_A", D::energy}, {"prebuckled_strain_energy_B", D::energy},

@@ -69,7 +69,7 @@ nlohmann::json DynamicsRecord::to_json() const
                       {"dissipated_energy", dissipated_energy},
                       {"kinetic_ratio", kinetic_ratio()},
                       {"dissipation_ratio", dissipation_ratio()},
-                      {"iterations", step.newton.iterations},
+                      {"newton_iterations", step.newton.iterations},
                       {"rejected", step.cutbacks},
                       {"wall_time", step.wall_time}};
   if (!std::isnan(external_work))

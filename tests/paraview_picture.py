@@ -52,8 +52,8 @@ def render(step, timeout=300):
         checks.finish()
     checks.require(f"./gelx view rendered step {step} (exit code {run.returncode}): "
                    f"{run.stdout.strip()}", run.returncode == 0 and png.is_file())
-    if run.returncode != 0:
-        print(run.stderr[-2000:])
+    if run.returncode != 0:  # the error's first lines and the end of its trace
+        print(run.stderr[:2000] + "\n...\n" + run.stderr[-1000:])
         checks.finish()
     return matplotlib.image.imread(str(png))[:, :, :3]
 

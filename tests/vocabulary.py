@@ -62,7 +62,9 @@ def units_of_run(run):
     def note(where, given):
         unknown = sorted(f"{n} [{u}]" for n, u in given.items() if u not in SI)
         twice = sorted(f"{n} [{units[n]}] and [{u}]" for n, u in given.items()
-                       if units.setdefault(n, u) != u)
+                       if n in units and units[n] != u)
+        for name, unit in given.items():
+            units.setdefault(name, unit)
         checks.require(f"{run.name}/{where}: {len(given)} units, each in this test's table (not: "
                        f"{unknown}) and as in the run's other files (not: {twice})",
                        given and not unknown and not twice)
@@ -87,13 +89,11 @@ def trapezoid(x, y):
     return sum(0.5 * (y[i] + y[i + 1]) * (x[i + 1] - x[i]) for i in range(len(x) - 1))
 
 
-def check_work(run, energy_column, work_of_rows):
+def check_work(run, summary, energy_column, work_of_rows):
     """The last row's energy against the work along the path, both in J"""
     rows = read_table(run / "steps.csv")
     units = table_units(run / "steps.csv")
-    system = json.loads((run / "summary.json").read_text())["unit_system"]
-    prm = json.loads((run / "summary.json").read_text())["parameters"]
-    work = work_of_rows(rows, units, system, prm)
+    work = work_of_rows(rows, units, summary["unit_system"], summary["parameters"])
     energy = float(rows[-1][energy_column]) * SI[units[energy_column]]
     checks.relative(f"{run.name}: {energy_column} [{units[energy_column]}] against the work "
                     f"along the path, in J", energy, work, 2e-2)
@@ -125,7 +125,7 @@ for run in map(pathlib.Path, sys.argv[1:]):
             checks.require(f"{name} is [{scene_units[key][0]}] in {scene_units[key][1]} and "
                            f"[{unit}] in {run.name}", False)
     if scene["scene"] == "block":
-        check_work(run, "strain_energy", block_work)
+        check_work(run, scene, "strain_energy", block_work)
     if scene["scene"] == "pyramid":
-        check_work(run, "strain_energy", pyramid_work)
+        check_work(run, scene, "strain_energy", pyramid_work)
 checks.finish()

@@ -67,14 +67,13 @@ Sources run_sources()
 
 void record_input_file(const std::string& path, const std::string& name)
 {
-  const std::string key = name.empty() ? path : name;
   const std::string hash = sha256_of_file(path);
-  if (const auto expected = expected_files().find(key);
+  if (const auto expected = expected_files().find(name);
       expected != expected_files().end() && expected->second != hash)
-    throw InputError("'" + key + "' is not the file " + expected_origin + " read (its SHA-256 "
+    throw InputError("'" + name + "' is not the file " + expected_origin + " read (its SHA-256 "
                      + abbreviated(hash) + "..., recorded " + abbreviated(expected->second)
                      + "...): the run would not replay");
-  read_files()[key] = hash;
+  read_files()[name] = hash;
 }
 
 void expect_sources(const Sources& recorded, const std::string& origin,

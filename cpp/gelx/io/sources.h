@@ -21,9 +21,9 @@ using Sources = std::map<std::string, std::string>;
 Sources run_sources();
 
 /// Record the content of the input file at `path`, which the run reads, under `name` (what
-/// the run's parameters call it; the path by default). If the run replays a record
-/// (expect_sources) that holds `name` with other content, throws InputError naming it.
-void record_input_file(const std::string& path, const std::string& name = {});
+/// the run's parameters call it). If the run replays a record (expect_sources) that holds
+/// `name` with other content, throws InputError naming it.
+void record_input_file(const std::string& path, const std::string& name);
 
 /// Make `recorded`, the sources of the run being replayed or continued (`origin` names where
 /// they were read), what this run must be computed from: a form file recorded with other

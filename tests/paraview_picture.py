@@ -11,7 +11,9 @@ A render interrupted midway (SIGINT to its process group, as Ctrl-C sends) leave
 of its own behind within 10 s. A render killed (SIGKILL) but for its Xvfb, as a timeout's kill
 that misses the display server, holds up no later render: the next finishes within 120 s.
 Before, the render lock was inherited by xvfb-run's Xvfb, and when it outlived its render
-every later render waited forever (seen under ctest -j2; this check hung on that code).
+every later render waited forever (seen under ctest -j2; this check hung on that code). The
+render's display is :10 or above, out of the range hwloc's GL plugin opens in MPI processes
+(tests/display_probe.py says why): with Xvfb -displayfd's first free display it failed.
 
 usage: paraview_picture.py BLOCK_RESULTS OUT_DIR
 """
@@ -85,9 +87,20 @@ def processes_of_group(group):
     return found
 
 
+def under_way(group):
+    """The processes of a render once its display server and pvbatch are up (a render takes
+    2 s on a quiet machine: a fixed wait could outlast it), within 30 s"""
+    for _ in range(600):
+        running = processes_of_group(group)
+        if {"Xvfb", "pvbatch"} <= {command for _, command in running}:
+            break
+        time.sleep(0.05)
+    return running
+
+
 interrupted = subprocess.Popen(view(0, out / "interrupted.png"), stdout=subprocess.DEVNULL,
                                stderr=subprocess.DEVNULL, start_new_session=True)
-time.sleep(4)  # past the display's start: pvbatch is rendering
+under_way(interrupted.pid)
 os.killpg(interrupted.pid, signal.SIGINT)
 interrupted.wait()
 for _ in range(100):
@@ -102,7 +115,12 @@ if left:
 
 killed = subprocess.Popen(view(0, out / "killed.png"), stdout=subprocess.DEVNULL,
                           stderr=subprocess.DEVNULL, start_new_session=True)
-time.sleep(4)
+running = under_way(killed.pid)
+displays = [[a for a in pathlib.Path(f"/proc/{pid}/cmdline").read_text().split("\0")
+             if a.startswith(":")] for pid, command in running if command == "Xvfb"]
+checks.require(f"the render's display {displays} is above :9 (hwloc's GL probe, in every MPI "
+               f"process started without gelx's environment, opens :0 to :9)",
+               len(displays) == 1 and len(displays[0]) == 1 and int(displays[0][0][1:]) >= 10)
 for _ in range(3):  # the whole process group but the display server, SIGKILL: no trap runs
     for pid, command in processes_of_group(killed.pid):
         if command != "Xvfb":

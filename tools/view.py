@@ -136,5 +136,13 @@ if args.extent:
     view.CameraParallelScale = args.extent
 png = args.png or args.results / f"{field}_output{output}.png"
 simple.SaveScreenshot(str(png), view, ImageResolution=args.size)
+
+def numbers(values):
+    return " ".join(f"{v:.9g}" for v in values)
+
+
+# The camera as the options that give this picture again (or a close-up of it)
 print(f"gelx view: {png} ({field} at output {output} of {len(times)}, "
-      f"{args.load_name} = {time:.6g})")
+      f"{args.load_name} = {time:.6g}); camera: --direction {numbers(args.direction)} "
+      f"--up {numbers(args.up)} --focus {numbers(view.CameraFocalPoint)} "
+      f"--extent {view.CameraParallelScale:.9g}")

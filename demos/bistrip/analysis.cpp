@@ -60,14 +60,17 @@ void BistripAnalysis::bind(Parameters& prm)
 
 void BistripAnalysis::check(const BistripParameters& p) const
 {
-  if (p.ends == "clamped" && end_distance >= p.L)
-    throw InputError("end_distance must be below L");
+  // At L a run with a bonding leg is that leg alone: the strip left to buckle at L
+  if (p.ends == "clamped" && end_distance >= p.L && !(end_distance == p.L && bonding != "instant"))
+    throw InputError("end_distance must be below L (or equal to it with --bonding quench or "
+                     "ramp: the bonding leg alone)");
   if (return_distance > 0 && (return_distance <= end_distance || return_distance > p.L))
     throw InputError("return_distance must lie in (end_distance, L]");
   if (equilibria > 0 && seed != "mode")
     throw InputError("equilibria need the buckling modes for guesses: --seed mode");
-  if (bonding != "instant" && (seed != "random" || method != "dynamics"))
-    throw InputError("--bonding " + bonding + " needs --seed random and --method dynamics");
+  if (bonding != "instant" && (seed != "random" || method == "arclength"))
+    throw InputError("--bonding " + bonding + " needs --seed random and a method in time "
+                     "(dynamics, inertia or explicit)");
   if ((return_distance > 0 || settle_time > 0) && method == "arclength")
     throw InputError("return_distance and settle_time need --method dynamics, inertia or "
                      "explicit");

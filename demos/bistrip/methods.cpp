@@ -7,6 +7,7 @@
 #include <gelx/solvers/newton.h>
 #include <gelx/common/petsc_utils.h>
 #include <gelx/io/progress.h>
+#include <cmath>
 #include <utility>
 
 namespace gelx::scenes
@@ -132,19 +133,22 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
     state.scene["dissipated_before"] = dissipated_before;
     checkpoints(step, state);
   };
+  // A leg's outputs besides its last: a moving end's every output_every of travel (the
+  // record's), and `held_output(record, end_time)` for a leg with the end held, which has no
+  // travel to output by
+  using HeldOutput = std::function<bool(const DynamicsRecord&, double)>;
   auto drive = [&](std::function<void(double)> load, double dissipated_before,
                    const std::string& key, const std::string& prefix, bool inertia,
-                   bool end_held = false)
+                   const HeldOutput& held_output = {})
   {
     ProgressLine progress(run.comm(), progress_options);
     auto observe = [&](const DynamicsRecord& r, const DynamicsSummary& so_far, double end_time)
     {
       // The flow's kinetic energy is a diagnostic of the regularised velocity, no term of
       // its balance; with inertia it is one
-      // A leg with the end held has no travel to output by: its every tenth step then
       record.step_done(r.to_json(), dissipated_before + r.dissipated_energy,
                        inertia ? r.kinetic_energy : 0.0,
-                       (end_held && r.step.step % 10 == 0) || r.time >= end_time - 1e-12);
+                       (held_output && held_output(r, end_time)) || r.time >= end_time - 1e-12);
       run.summary[key] = so_far.to_json();
       StepRecord step = r.step; // numbered over the legs, as steps.csv is
       step.step = record.steps();
@@ -189,6 +193,17 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
     resumed_leg = record.leg();
     dissipated = start.scene.at("dissipated_before");
   }
+  const std::string prefix = a.method == "explicit" ? "explicit_"
+                             : inertia               ? "inertial_"
+                                                     : "dynamics_";
+  const std::string key = a.method == "explicit" ? "explicit_dynamics"
+                          : inertia              ? "inertial_dynamics"
+                                                 : "dynamics";
+  // With inertia a quench is the release itself: the strip bonded with all of A's
+  // pre-compression and let go at L under the path's equation of motion (options
+  // -bonding_inertial_ or -bonding_explicit_), so that the dynamics, not a gradient flow,
+  // picks the wavelengths that grow
+  const bool inertial_quench = inertia && a.bonding == "quench";
   if (a.bonding != "instant" && resumed_leg <= 0)
   {
     // Leg 0, the end held at L: a ramp builds the prestretch up over 1 s, at the path's
@@ -202,25 +217,49 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
     // legs after it starts from where it ends (the prestretch's own work is not the end
     // force's)
     const bool quench = a.bonding == "quench";
-    set_default_options("bonding_dynamics_", {{"loading_time", quench ? "2000" : "1"},
-                                              {"hold_time", "0.05"},
-                                              {"damping", quench ? "1e8" : "1"},
-                                              {"ts_rtol", "1e-3"},
-                                              {"ts_atol", "1e-3"}});
+    if (inertial_quench)
+    {
+      // The fastest modes grow at ~1e4/s under inertia (the square root of the flow's rate
+      // at c = 1): central differences at their stable step, or TSALPHA2 at fixed steps of
+      // 10 us, whose rho_inf = 0.5 damps the section's ringing they do not resolve (its
+      // adaptive steps stayed at 1 us for it: 740 steps in the first minute at nz = 15,
+      // measured); the path's damping
+      if (a.method == "explicit")
+        set_default_options("bonding_explicit_", {{"ts_type", TSCENTRALDIFFERENCE}});
+      else
+        set_default_options("bonding_inertial_", {{"dt", "1e-5"},
+                                                  {"ts_adapt_type", "none"},
+                                                  {"ts_alpha_radius", "0.5"}});
+      set_default_options("bonding_" + prefix,
+                          {{"loading_time", "0.05"}, {"hold_time", "0"}, {"rayleigh_mass", "30"}});
+    }
+    else
+    {
+      set_default_options("bonding_dynamics_", {{"loading_time", quench ? "2000" : "1"},
+                                                {"hold_time", "0.05"},
+                                                {"damping", quench ? "1e8" : "1"},
+                                                {"ts_rtol", "1e-3"},
+                                                {"ts_atol", "1e-3"}});
+    }
     if (resumed_leg < 0)
       record.begin_leg(0);
+    // The release's outputs: 50 at equal times (its explicit steps number 1e5; a step's
+    // slot from its time and size, so that a restart keeps them)
+    const HeldOutput fiftieths = [](const DynamicsRecord& r, double end_time)
+    {
+      const auto slot = [end_time](double t) { return std::floor(50 * t / end_time + 1e-9); };
+      return slot(r.time) > slot(r.time - r.step.step_size);
+    };
     drive([&](double s) { strip.set_prestretch_fraction(quench ? 1 : s); }, 0,
-          "bonding_dynamics", "bonding_dynamics_", false);
+          inertial_quench ? "bonding_" + key : "bonding_dynamics",
+          inertial_quench ? "bonding_" + prefix : "bonding_dynamics_", inertial_quench,
+          inertial_quench ? fiftieths : HeldOutput{});
   }
-  const std::string prefix = a.method == "explicit" ? "explicit_"
-                             : inertia               ? "inertial_"
-                                                     : "dynamics_";
-  const std::string key = a.method == "explicit" ? "explicit_dynamics"
-                          : inertia              ? "inertial_dynamics"
-                                                 : "dynamics";
-  if (resumed_leg < 1)
+  // With the end distance at L, the bonding leg is the whole path
+  const bool moves_in = a.end_distance < p.L;
+  if (resumed_leg < 1 && moves_in)
   {
-    if (inertia)
+    if (inertia && !inertial_quench)
     {
       // The motion starts at rest from the bonded strip's static equilibrium at L: u = 0 is
       // none (A's prestretch pulls on the clamps and contracts the section), and released
@@ -232,7 +271,7 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
     record.begin_leg(1);
   }
   // Each leg's end moves from where the leg starts: L, then end_distance
-  if (record.leg() == 1)
+  if (record.leg() == 1 && moves_in)
   {
     strip.set_end_distance(p.L);
     dissipated = drive(move_end(strip, a.end_distance), dissipated, key, prefix, inertia);
@@ -259,7 +298,8 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
                                              {"damping", "1"},
                                              {"ts_rtol", "1e-4"},
                                              {"ts_atol", "1e-4"}});
-    drive([](double) {}, dissipated, "settle_dynamics", "settle_dynamics_", false, true);
+    drive([](double) {}, dissipated, "settle_dynamics", "settle_dynamics_", false,
+          [](const DynamicsRecord& r, double) { return r.step.step % 10 == 0; });
   }
 }
 

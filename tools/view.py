@@ -137,6 +137,7 @@ if args.extent:
 png = args.png or args.results / f"{field}_output{output}.png"
 simple.SaveScreenshot(str(png), view, ImageResolution=args.size)
 
+
 def numbers(values):
     return " ".join(f"{v:.9g}" for v in values)
 

@@ -204,6 +204,8 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
   // -bonding_inertial_ or -bonding_explicit_), so that the dynamics, not a gradient flow,
   // picks the wavelengths that grow
   const bool inertial_quench = inertia && a.bonding == "quench";
+  const std::string bonding_prefix = inertial_quench ? "bonding_" + prefix : "bonding_dynamics_";
+  const std::string bonding_key = inertial_quench ? "bonding_" + key : "bonding_dynamics";
   if (a.bonding != "instant" && resumed_leg <= 0)
   {
     // Leg 0, the end held at L: a ramp builds the prestretch up over 1 s, at the path's
@@ -230,16 +232,16 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
         set_default_options("bonding_inertial_", {{"dt", "1e-5"},
                                                   {"ts_adapt_type", "none"},
                                                   {"ts_alpha_radius", "0.5"}});
-      set_default_options("bonding_" + prefix,
+      set_default_options(bonding_prefix,
                           {{"loading_time", "0.05"}, {"hold_time", "0"}, {"rayleigh_mass", "30"}});
     }
     else
     {
-      set_default_options("bonding_dynamics_", {{"loading_time", quench ? "2000" : "1"},
-                                                {"hold_time", "0.05"},
-                                                {"damping", quench ? "1e8" : "1"},
-                                                {"ts_rtol", "1e-3"},
-                                                {"ts_atol", "1e-3"}});
+      set_default_options(bonding_prefix, {{"loading_time", quench ? "2000" : "1"},
+                                           {"hold_time", "0.05"},
+                                           {"damping", quench ? "1e8" : "1"},
+                                           {"ts_rtol", "1e-3"},
+                                           {"ts_atol", "1e-3"}});
     }
     if (resumed_leg < 0)
       record.begin_leg(0);
@@ -250,10 +252,8 @@ void follow_path(Run& run, Bistrip& strip, const BistripParameters& p, const Bis
       const auto slot = [end_time](double t) { return std::floor(50 * t / end_time + 1e-9); };
       return slot(r.time) > slot(r.time - r.step.step_size);
     };
-    drive([&](double s) { strip.set_prestretch_fraction(quench ? 1 : s); }, 0,
-          inertial_quench ? "bonding_" + key : "bonding_dynamics",
-          inertial_quench ? "bonding_" + prefix : "bonding_dynamics_", inertial_quench,
-          inertial_quench ? fiftieths : HeldOutput{});
+    drive([&](double s) { strip.set_prestretch_fraction(quench ? 1 : s); }, 0, bonding_key,
+          bonding_prefix, inertial_quench, inertial_quench ? fiftieths : HeldOutput{});
   }
   // With the end distance at L, the bonding leg is the whole path
   const bool moves_in = a.end_distance < p.L;

@@ -37,6 +37,12 @@ void BistripParameters::bind(Parameters& prm)
   prm.bind("geometry", "ends", ends,
            "clamped (z = 0 encastred, z = L a rigid face moving along z) or free",
            Parameters::one_of({"clamped", "free"}));
+  prm.bind("material", "law", law,
+           "nh neo-Hookean (thesis Eq. 3.1, the law of the thesis' runs), mr Mooney-Rivlin",
+           Parameters::one_of({"nh", "mr"}));
+  prm.bind("material", "mooney_share", mooney_share,
+           "Mooney-Rivlin C01 / (C10 + C01), with C10 + C01 = G/2 (law mr)",
+           [](double v) { return v >= 0 && v < 1 ? "" : "must be in [0, 1)"; });
   prm.bind("material", "G", G, "shear modulus (MPa)", Parameters::positive);
   prm.bind("material", "K", K, "bulk modulus (MPa)", Parameters::positive);
   prm.bind("material", "rho", rho, "mass density (the dynamic methods)", Parameters::positive);
@@ -51,6 +57,8 @@ void BistripParameters::bind(Parameters& prm)
 
 void BistripParameters::check() const
 {
+  if (law != "mr" && mooney_share != 0)
+    throw InputError("--mooney_share applies to --law mr only");
   double thickness = 0;
   for (const Layer& layer : layers()) // throws on a malformed section
     thickness += layer.thickness;
@@ -74,16 +82,21 @@ void BistripParameters::check() const
   }
 }
 
-double uniaxial_lateral_stretch(double stretch, double G, double K)
+double uniaxial_lateral_stretch(double stretch, double G, double K, double mooney_share)
 {
+  const double C10 = (1 - mooney_share) * G / 2, C01 = mooney_share * G / 2;
   const auto lateral_stress = [&](double l)
   {
-    const double J = stretch * l * l, I1 = stretch * stretch + 2 * l * l;
-    return G * std::pow(J, -5.0 / 3.0) * (l * l - I1 / 3) + K * (J - 1);
+    // sigma = 2/J dev[(C10 + C01 I1_bar) B_bar - C01 B_bar^2] + K (J - 1) I, whose lateral
+    // principal value, with B_bar's lateral and axial eigenvalues b_l and b_a, is
+    // 2/(3J) (b_l - b_a)(C10 + C01 b_l) + K (J - 1)
+    const double J = stretch * l * l, isochoric = std::pow(J, -2.0 / 3.0);
+    const double b_l = isochoric * l * l, b_a = isochoric * stretch * stretch;
+    return 2 / (3 * J) * (b_l - b_a) * (C10 + C01 * b_l) + K * (J - 1);
   };
-  // sigma_lateral -> -inf as l -> 0 (J -> 0, the deviatoric part J^(-5/3) (l^2 - stretch^2)/3
-  // < 0 for l < stretch); and > 0 once l is large enough (K (J - 1) grows like l^2, the
-  // deviatoric part decays): the bracket is widened until it holds the root
+  // sigma_lateral -> -inf as l -> 0 (J -> 0, the deviatoric part ~ (b_l - b_a)/J < 0 for
+  // l < stretch); and > 0 once l is large enough (K (J - 1) grows like l^2, the deviatoric
+  // part decays): the bracket is widened until it holds the root
   double lo = 1e-3 * std::min(1.0, stretch), hi = std::max(1.0, 2.0 / std::sqrt(stretch));
   while (lateral_stress(hi) < 0)
     hi *= 2;
@@ -97,7 +110,7 @@ double uniaxial_lateral_stretch(double stretch, double G, double K)
 
 double BistripParameters::lateral_stretch() const
 {
-  return uniaxial_lateral_stretch(stretch, G, K);
+  return uniaxial_lateral_stretch(stretch, G, K, law == "mr" ? mooney_share : 0.0);
 }
 
 std::vector<Layer> BistripParameters::layers() const
@@ -122,7 +135,7 @@ std::tuple<int, std::int64_t, std::int64_t> node_key(const double* X, double lay
           std::llround(X[1] * 1e3)};
 }
 
-/// The generated kernels of one displacement element (forms/prestretched_strip.py)
+/// The generated kernels of one law and displacement element (forms/prestretched_strip.py)
 struct Kernels
 {
   const char* u; ///< the displacement coefficient's name
@@ -132,43 +145,33 @@ struct Kernels
   const ufcx_expression *stress, *psi, *psi_section, *det_F;
 };
 
-const Kernels& kernels(int degree)
+#define STRIP_KERNELS(law, q)                                                                  \
+  {{#law, q},                                                                                  \
+   {"u_q" #q, functionspace_form_prestretched_strip_residual_##law##_q##q,                     \
+    functionspace_form_prestretched_strip_cell_energy_##law##_q##q,                            \
+    form_prestretched_strip_residual_##law##_q##q, form_prestretched_strip_tangent_##law##_q##q, \
+    form_prestretched_strip_mass_q##q, form_prestretched_strip_energy_A_##law##_q##q,          \
+    form_prestretched_strip_energy_B_##law##_q##q,                                             \
+    form_prestretched_strip_cell_energy_##law##_q##q,                                          \
+    expression_prestretched_strip_stress_##law##_q##q,                                         \
+    expression_prestretched_strip_psi_##law##_q##q,                                            \
+    expression_prestretched_strip_psi_section_##law##_q##q,                                    \
+    expression_prestretched_strip_det_F_q##q}}
+/// The generated kernels of the scene's law and displacement element
+const Kernels& kernels(const BistripParameters& p)
 {
-  static const Kernels q1{"u_q1",
-                          functionspace_form_prestretched_strip_residual_q1,
-                          functionspace_form_prestretched_strip_cell_energy_q1,
-                          form_prestretched_strip_residual_q1,
-                          form_prestretched_strip_tangent_q1,
-                          form_prestretched_strip_mass_q1,
-                          form_prestretched_strip_energy_A_q1,
-                          form_prestretched_strip_energy_B_q1,
-                          form_prestretched_strip_cell_energy_q1,
-                          expression_prestretched_strip_stress_q1,
-                          expression_prestretched_strip_psi_q1,
-                          expression_prestretched_strip_psi_section_q1,
-                          expression_prestretched_strip_det_F_q1};
-  static const Kernels q2{"u_q2",
-                          functionspace_form_prestretched_strip_residual_q2,
-                          functionspace_form_prestretched_strip_cell_energy_q2,
-                          form_prestretched_strip_residual_q2,
-                          form_prestretched_strip_tangent_q2,
-                          form_prestretched_strip_mass_q2,
-                          form_prestretched_strip_energy_A_q2,
-                          form_prestretched_strip_energy_B_q2,
-                          form_prestretched_strip_cell_energy_q2,
-                          expression_prestretched_strip_stress_q2,
-                          expression_prestretched_strip_psi_q2,
-                          expression_prestretched_strip_psi_section_q2,
-                          expression_prestretched_strip_det_F_q2};
-  return degree == 1 ? q1 : q2;
+  static const std::map<std::pair<std::string, int>, Kernels> all
+      = {STRIP_KERNELS(nh, 1), STRIP_KERNELS(nh, 2), STRIP_KERNELS(mr, 1), STRIP_KERNELS(mr, 2)};
+  return all.at({p.law, p.degree});
 }
+#undef STRIP_KERNELS
 } // namespace
 
 Bistrip::Bistrip(MPI_Comm comm, BistripParameters p)
     : _p(p), _geo(layered_strip_mesh(comm, p.layers(), p.L, {p.nz, p.nx, p.ns, p.nb, p.na})),
       _frame_half_width(p.layers()[0].width / 2), _end_distance(p.L)
 {
-  const Kernels& k = kernels(p.degree);
+  const Kernels& k = kernels(p);
   auto V = std::make_shared<fem::FunctionSpace>(
       fem::create_functionspace(k.space, k.u, _geo.mesh));
   _u = std::make_shared<fem::Function<double>>(V);
@@ -182,7 +185,8 @@ Bistrip::Bistrip(MPI_Comm comm, BistripParameters p)
 
   _forms = std::make_unique<FormBinding>(
       _geo.mesh, FormBinding::Coefficients{{k.u, _u}, {"F0", _F0}},
-      std::map<std::string, double>{{"G", p.G}, {"K", p.K}, {"rho", p.rho}});
+      std::map<std::string, double>{
+          {"G", p.G}, {"K", p.K}, {"mooney_share", p.mooney_share}, {"rho", p.rho}});
   _forms->add_subdomains(fem::IntegralType::cell, _geo.cell_tags);
 
   _bcs = std::make_unique<DirichletConditions>(V, _geo.facet_tags);
@@ -450,17 +454,17 @@ std::shared_ptr<fem::Function<double>> Bistrip::random_imperfection(int harmonic
 
 std::shared_ptr<fem::Form<double>> Bistrip::mass_form() const
 {
-  return _forms->form(kernels(_p.degree).mass, {space(), space()});
+  return _forms->form(kernels(_p).mass, {space(), space()});
 }
 
 std::shared_ptr<fem::Expression<double>> Bistrip::stress() const
 {
-  return _forms->expression(kernels(_p.degree).stress);
+  return _forms->expression(kernels(_p).stress);
 }
 
 std::shared_ptr<fem::Expression<double>> Bistrip::energy_density() const
 {
-  return _forms->expression(kernels(_p.degree).psi);
+  return _forms->expression(kernels(_p).psi);
 }
 
 } // namespace gelx::scenes

@@ -2,8 +2,8 @@
 /// @file bistrip.h
 /// The prestretched bistrip of thesis chapter 3 (Fig. 3.1b, Table 3.1): strip B (lower) is
 /// stress-free, strip A (upper) was stretched from its natural length L / stretch to L before
-/// the two were bonded. Compressible neo-Hookean (Eq. 3.1) with A's stretch carried as the
-/// prestretch F0 of its cells (forms/prestretched_strip.py), structured hexahedra
+/// the two were bonded. Compressible neo-Hookean (Eq. 3.1) or Mooney-Rivlin with A's stretch
+/// carried as the prestretch F0 of its cells (forms/prestretched_strip.py), structured hexahedra
 /// (section.h). Other cross-sections (Fig. 3.10: tristrips, other widths) and a
 /// pre-compressed strip A (stretch < 1, Fig. 3.8) are the same model with other parameters.
 /// End z = 0 encastred; end z = L moves as a rigid face without rotation (u1 = u2 = 0, one
@@ -42,6 +42,8 @@ struct BistripParameters
   /// The cross-section, layers from the bottom up (parse_section); empty: "B wxh, A wxh",
   /// the bistrip of Fig. 3.10a
   std::string section;
+  std::string law = "nh"; ///< "nh" neo-Hookean (Eq. 3.1) or "mr" Mooney-Rivlin
+  double mooney_share = 0; ///< Mooney-Rivlin C01 / (C10 + C01), law mr
   double G = 1.5;     ///< shear modulus (MPa)
   double K = 40;      ///< bulk modulus (MPa)
   double rho = 1e-9;  ///< mass density (t/mm^3: 1000 kg/m^3, with time in s)
@@ -62,10 +64,12 @@ struct BistripParameters
   std::vector<Layer> layers() const;
 };
 
-/// The lateral stretch l of a compressible neo-Hookean bar (Eq. 3.1) stretched (or, below 1,
-/// compressed) by `stretch` along its axis with free sides: the root of sigma_lateral = G J^(-5/3) (l^2 - I1/3) +
-/// K (J - 1) = 0, J = stretch l^2, I1 = stretch^2 + 2 l^2 (bisection, to round-off).
-double uniaxial_lateral_stretch(double stretch, double G, double K);
+/// The lateral stretch l of a compressible Mooney-Rivlin bar, U = C10 (I1_bar - 3) +
+/// C01 (I2_bar - 3) + K/2 (J - 1)^2 with C10 = (1 - mooney_share) G/2, C01 = mooney_share G/2
+/// (mooney_share 0: the neo-Hookean solid of Eq. 3.1), stretched (or, below 1, compressed) by
+/// `stretch` along its axis with free sides: the root of sigma_lateral = 0 (bisection, to
+/// round-off).
+double uniaxial_lateral_stretch(double stretch, double G, double K, double mooney_share);
 
 class Bistrip
 {

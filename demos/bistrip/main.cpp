@@ -9,6 +9,7 @@
 //   ./gelx run bistrip --w 3 --stretch 0.4 --seed random --bonding ramp --end_distance 270
 //                      --return_distance 300                     (pre-compressed, Figs. 3.8-9)
 //   ./gelx run bistrip --end_distance 233 --equilibria 6          (other equilibria there)
+//   ./gelx run bistrip --law mr --mooney_share 0.5 --end_distance 200 --nz 60  (Mooney-Rivlin)
 //   ./gelx sweep bistrip                                  (the studies of thesis section 3.4)
 //
 // The model (thesis section 3.2-3.3, Table 3.1): strip B (lower, w x h) is stress-free; strip A

@@ -255,9 +255,19 @@ Mat lumped_mass(Mat M, const std::vector<PetscInt>& prescribed, const std::strin
     GELX_PETSC(VecRestoreArray(diagonal, &d));
     GELX_PETSC(VecRestoreArray(sums, &r));
   }
+  // Only the diagonal is stored: a product with M's pattern of zeros cost as much as one with
+  // the consistent mass (0.5 ms of an explicit step's 6 ms on 15 Q2 slabs of the bistrip)
+  PetscInt local_rows, local_columns, rows, columns, bs;
+  GELX_PETSC(MatGetLocalSize(M, &local_rows, &local_columns));
+  GELX_PETSC(MatGetSize(M, &rows, &columns));
+  GELX_PETSC(MatGetBlockSize(M, &bs));
   Mat lumped;
-  GELX_PETSC(MatDuplicate(M, MAT_DO_NOT_COPY_VALUES, &lumped));
-  GELX_PETSC(MatZeroEntries(lumped));
+  GELX_PETSC(MatCreate(comm, &lumped));
+  GELX_PETSC(MatSetSizes(lumped, local_rows, local_columns, rows, columns));
+  GELX_PETSC(MatSetBlockSize(lumped, bs));
+  GELX_PETSC(MatSetType(lumped, MATAIJ));
+  GELX_PETSC(MatSeqAIJSetPreallocation(lumped, 1, nullptr));
+  GELX_PETSC(MatMPIAIJSetPreallocation(lumped, 1, nullptr, 0, nullptr));
   GELX_PETSC(MatDiagonalSet(lumped, sums, INSERT_VALUES));
   VecDestroy(&sums);
   VecDestroy(&diagonal);

@@ -58,8 +58,8 @@ struct CentralDifferenceState
 /// The state of `ts` (of type TSCENTRALDIFFERENCE, set up): throws otherwise.
 CentralDifferenceState central_difference_state(TS ts);
 
-/// The lumped mass of the consistent mass M (assembled, square): a copy of M with its
-/// pattern (so that it adds to a tangent entry by entry) and only its diagonal, either the
+/// The lumped mass of the consistent mass M (assembled, square): a matrix of M's layout that
+/// stores only its diagonal (it adds to a tangent with SUBSET_NONZERO_PATTERN), either the
 /// row sums (`row_sum`: positive on Q1 and Q2 hexahedra and P1 tetrahedra; on P2 tetrahedra
 /// the vertex rows sum to a negative mass, -1/20 of each element's), or M's diagonal scaled to
 /// keep the total mass per unknown component (`diagonal`, HRZ's scaling applied to the whole

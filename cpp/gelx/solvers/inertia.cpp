@@ -157,7 +157,8 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
         r += first_row;
       GELX_PETSC(MatZeroRowsColumns(K0, PetscInt(rows.size()), rows.data(), 0.0, nullptr,
                                     nullptr));
-      GELX_PETSC(MatAXPY(_damping, b, K0, SUBSET_NONZERO_PATTERN));
+      // (K0's pattern holds the lumped mass's diagonal, not the other way round)
+      GELX_PETSC(MatAXPY(_damping, b, K0, DIFFERENT_NONZERO_PATTERN));
       GELX_PETSC(MatDestroy(&K0));
     }
     _damping_D = without_prescribed_rows(system, _damping);
@@ -310,9 +311,11 @@ void InertialDynamics::form_jacobian(double t, Vec u, double shift_v, double shi
   set_stage_time(t);
   _system.set_state(u);
   _system.tangent(P);
-  GELX_PETSC(MatAXPY(P, shift_a, _mass_D, SAME_NONZERO_PATTERN));
+  // A lumped mass stores its diagonal alone (lumped_mass); C = a M + b K0 then too, or K0's
+  const MatStructure pattern = _lumping.empty() ? SAME_NONZERO_PATTERN : SUBSET_NONZERO_PATTERN;
+  GELX_PETSC(MatAXPY(P, shift_a, _mass_D, pattern));
   if (_damping_D)
-    GELX_PETSC(MatAXPY(P, shift_v, _damping_D, SAME_NONZERO_PATTERN));
+    GELX_PETSC(MatAXPY(P, shift_v, _damping_D, pattern));
 }
 
 void InertialDynamics::reactions(Vec u, Vec v, Vec a, Vec r)

@@ -5,8 +5,9 @@ F0 = I in strip B), on hexahedra. The laws:
   mr   Mooney-Rivlin, C10 = (1 - s) G/2, C01 = s G/2 (G, K, s = mooney_share)
 
 Cells tagged 1 are the prestretched strips (A), 2 the stress-free ones (B): demos/bistrip/
-section.h. Two displacement elements, for the work-precision study of demos/bistrip/bench.py: Q2 (suffix q2, the scene's default) and Q1
-(q1, which locks in bending under full integration). Per law and element (suffix law_q1,
+section.h. Two displacement elements, for the work-precision study of demos/bistrip/bench.py:
+Q2 (suffix q2, the scene's default) and Q1 (q1, which locks in bending under full
+integration). Per law and element (suffix law_q1,
 law_q2):
   residual_*, tangent_*           the equilibrium
   energy_A_*, energy_B_*          the stored energy of each strip (their sum: the strain energy)

@@ -115,6 +115,13 @@ CASES = {
         ("grid_min_above_max", ["--eps_min", "0.5", "--eps_max", "0.2"], "min < max"),
         ("one_peo_value", ["--peo_chi_A", "0.5"], "needs all seven"),
     ],
+    "swelling": [
+        ("dry_reference", ["--lambda0", "1"], "must exceed 1 (the dry state is singular)"),
+        ("negative_diffusivity", ["--D", "-1e-3"], "'D' = -0.001: must be positive"),
+        ("supersaturated_solvent", ["--mu", "0.1"], "must be at most 0 (the pure solvent's)"),
+        ("mu_below_reference", ["--mu", "-0.5"], "is below mu0"),
+        ("flat_grading", ["--grading", "0.5"], "must be at least 1"),
+    ],
     "bistrip": [
         ("unknown_layer_kind", ["--section", "B 9x3, Q 9x3"], "unknown kind 'Q'"),
         ("layer_without_size", ["--section", "B 9x3, A 9"], "write KIND WIDTHxTHICKNESS"),
@@ -147,7 +154,8 @@ TWO_RANKS = {"block": ["missing_mesh", "dt_above_dt_max", "fieldsplit_not_mixed"
              "pyramid": ["W_below_L", "absurd_cells"],
              "inflation": ["B_equal_A"], "buckling": ["ty_equal_tx"],
              "fiber_gel": ["cell_narrower_than_fiber", "phi_f_beyond_one"],
-             "bistrip": ["unknown_layer_kind", "end_distance_beyond_L"]}
+             "bistrip": ["unknown_layer_kind", "end_distance_beyond_L"],
+             "swelling": ["mu_below_reference"]}
 
 # A valid scene file per scene (values other than the defaults, for a run of a few seconds),
 # with the status its run must end in. The buckling run stops after max_steps on its straight
@@ -160,6 +168,7 @@ SCENE_FILES = {
     "buckling": ({"max_steps": "3", "modes": "2"}, "failed: no bifurcation found"),
     "fiber_gel": ({"l": "20", "L": "35", "D": "25", "h_fiber": "3", "h_far": "8"}, "completed"),
     "bistrip": ({"ends": "free", "stretch": "1.02", "L": "60", "nz": "20"}, "completed"),
+    "swelling": ({"nz": "10", "chi": "0.5", "end_time": "100", "ramp_time": "2"}, "completed"),
     "flory_rehner": ({"n_phi": "20", "n_eps": "11", "n_nu_vm": "0.01", "peo_n_grid": "5",
                       "alpha0": "0.77", "phi_i_max": "0.45"}, "completed"),
 }

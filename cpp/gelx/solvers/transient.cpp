@@ -1,0 +1,161 @@
+#include <gelx/solvers/transient.h>
+
+#include <gelx/common/petsc_utils.h>
+#include <gelx/io/parameters.h>
+
+#include <algorithm>
+#include <petsc/private/tsimpl.h>
+
+namespace gelx
+{
+namespace
+{
+TransientProblem& transient_of(void* ctx) { return *static_cast<TransientProblem*>(ctx); }
+
+PetscErrorCode form_function(TS, PetscReal t, Vec w, Vec w_dot, Vec F, void* ctx)
+{
+  TransientProblem& p = transient_of(ctx);
+  return guarded_callback(p.callback_error, [&] { p.form_function(t, w, w_dot, F); });
+}
+
+PetscErrorCode form_jacobian(TS, PetscReal t, Vec w, Vec w_dot, PetscReal shift, Mat,
+                             Mat P, void* ctx)
+{
+  TransientProblem& p = transient_of(ctx);
+  return guarded_callback(p.callback_error, [&] { p.form_jacobian(t, w, w_dot, shift, P); });
+}
+
+PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec w, void* ctx)
+{
+  TransientProblem& p = transient_of(ctx);
+  return guarded_callback(p.callback_error, [&] { p.accepted(int(step), t, w); });
+}
+
+PetscErrorCode post_step(TS ts)
+{
+  void* ctx;
+  PetscCall(TSGetApplicationContext(ts, &ctx));
+  TransientProblem& p = transient_of(ctx);
+  return guarded_callback(p.callback_error, [&] { p.check_step_size(); });
+}
+} // namespace
+
+TransientProblem::TransientProblem(MPI_Comm comm, NonlinearProblem& problem,
+                                   std::shared_ptr<dolfinx::fem::Function<double>> rate,
+                                   dolfinx::fem::Constant<double>& shift,
+                                   std::function<void(double)> set_time, double end_time,
+                                   const std::string& prefix)
+    : _problem(problem), _rate(std::move(rate)), _shift(shift),
+      _set_time(std::move(set_time)), _prefix(prefix), _end_time(end_time),
+      _min_step(positive_option(prefix, "min_step", 1e-14 * end_time))
+{
+  set_time_stepping_defaults(prefix, "bdf", end_time, 0, 1e-6 * end_time);
+  set_default_option(prefix, "ts_bdf_order", "2");
+  _jacobian = problem.create_matrix();
+  GELX_PETSC(TSCreate(comm, &_ts));
+  GELX_PETSC(TSSetOptionsPrefix(_ts, prefix.c_str()));
+  GELX_PETSC(TSSetProblemType(_ts, TS_NONLINEAR));
+  Vec r = problem.create_vector();
+  GELX_PETSC(TSSetIFunction(_ts, r, gelx::form_function, this));
+  GELX_PETSC(VecDestroy(&r));
+  GELX_PETSC(TSSetIJacobian(_ts, _jacobian, _jacobian, gelx::form_jacobian, this));
+  GELX_PETSC(TSMonitorSet(_ts, monitor, this, nullptr));
+  GELX_PETSC(TSSetApplicationContext(_ts, this));
+  GELX_PETSC(TSSetPostStep(_ts, post_step));
+  GELX_PETSC(TSSetFromOptions(_ts));
+  refuse_unread_options_of(prefix);
+  reject_failed_line_searches(_ts);
+  GELX_PETSC(TSSetErrorIfStepFails(_ts, PETSC_FALSE));
+}
+
+TransientProblem::~TransientProblem()
+{
+  TSDestroy(&_ts);
+  MatDestroy(&_jacobian);
+}
+
+void TransientProblem::set_state(double t, Vec w, Vec w_dot)
+{
+  _set_time(t);
+  _problem.set_state(w);
+  // The rate's owned values from TS, its ghosts from their owners
+  const PetscScalar* values;
+  PetscInt n;
+  GELX_PETSC(VecGetLocalSize(w_dot, &n));
+  GELX_PETSC(VecGetArrayRead(w_dot, &values));
+  std::copy_n(values, n, _rate->x()->mutable_array().begin());
+  GELX_PETSC(VecRestoreArrayRead(w_dot, &values));
+  _rate->x()->scatter_fwd();
+}
+
+void TransientProblem::form_function(double t, Vec w, Vec w_dot, Vec F)
+{
+  set_state(t, w, w_dot);
+  if (!_problem.admissible())
+  {
+    SNES snes;
+    GELX_PETSC(TSGetSNES(_ts, &snes));
+    GELX_PETSC(SNESSetFunctionDomainError(snes)); // the stage fails; TS cuts the step
+    return;
+  }
+  _problem.residual(F);
+}
+
+void TransientProblem::form_jacobian(double t, Vec w, Vec w_dot, double shift, Mat P)
+{
+  set_state(t, w, w_dot);
+  _shift.value = {shift};
+  _problem.tangent(P);
+}
+
+void TransientProblem::accepted(int step, double t, Vec w)
+{
+  if (step == 0)
+  {
+    _counters.wall_time = wall_clock(); // TSSolve's first call: the state it starts from
+    return;
+  }
+  PetscReal t_previous;
+  GELX_PETSC(TSGetPrevTime(_ts, &t_previous));
+  _set_time(t);
+  _problem.set_state(w);
+  TransientStep record;
+  record.time = t;
+  record.step = accepted_step(_ts, step, t, t - t_previous, _counters);
+  (*_observe)(record);
+}
+
+void TransientProblem::check_step_size()
+{
+  if (const double step = stop_below_min_step(_ts, _min_step); step > 0)
+    _too_small_step = step;
+}
+
+int TransientProblem::run(const std::function<void(const TransientStep&)>& observe)
+{
+  _observe = &observe;
+  _counters = StepCounters{};
+  OwnedVec w(_problem.create_vector());
+  GELX_PETSC(VecCopy(_problem.unknowns(), w.get()));
+  GELX_PETSC(TSSetTime(_ts, 0.0));
+  GELX_PETSC(TSSetStepNumber(_ts, 0));
+  callback_error = nullptr;
+  _too_small_step = 0;
+  // Errors of the callbacks are rethrown below; PETSc must not print its trace for them
+  GELX_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  const PetscErrorCode ierr = TSSolve(_ts, w.get());
+  GELX_PETSC(PetscPopErrorHandler());
+  _observe = nullptr;
+  if (callback_error)
+    std::rethrow_exception(callback_error);
+  GELX_PETSC(ierr);
+  PetscReal t;
+  PetscInt steps;
+  GELX_PETSC(TSGetTime(_ts, &t));
+  GELX_PETSC(TSGetStepNumber(_ts, &steps));
+  _problem.set_state(w.get());
+  throw_if_stopped_early(_ts, t, "the transient", _too_small_step, _prefix, _min_step, " s");
+  return int(steps);
+}
+
+} // namespace gelx

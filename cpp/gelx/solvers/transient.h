@@ -1,0 +1,83 @@
+#pragma once
+/// @file transient.h
+/// A problem whose residual holds the rate of its unknowns, R(w, w'; t) = 0, integrated in
+/// time by an implicit PETSc TS: a differential-algebraic system such as a swelling gel's,
+/// whose equilibrium rows hold no rate and whose solvent-conservation rows do.
+
+#include <gelx/solvers/dynamics.h>
+#include <gelx/systems/problem.h>
+
+#include <dolfinx/fem/Constant.h>
+#include <dolfinx/fem/Function.h>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mpi.h>
+#include <petscts.h>
+#include <string>
+
+namespace gelx
+{
+
+/// One accepted step of a TransientProblem: its record (number, time as the load, size,
+/// Newton and linear iterations, rejected attempts, wall time) and its time.
+struct TransientStep
+{
+  StepRecord step;
+  double time = 0;
+};
+
+/// Integrates R(w, w'; t) = 0 from the problem's current state at t = 0 to an end time.
+///
+/// The problem's residual form holds the rate as the coefficient `rate` (on the problem's
+/// space), and its tangent form is dR/dw + shift dR/dw' with `shift` a constant of the form:
+/// the Jacobian of TS's implicit function, shift being TS's d(w')/dw. Its Dirichlet rows stay
+/// u - g(t): algebraic equations, with g set by `set_time(t)` before every evaluation. Options
+/// prefix `prefix` for TS, SNES and KSP; by default adaptive BDF of order 2 with first step
+/// end_time * 1e-6, steps up to end_time / 10, a direct solve (MUMPS). Why TS and not a
+/// backward-Euler form of one's own: its BDFs are L-stable and adapt the step to the
+/// transient, which spans decades (a diffusion front's sqrt(t) start, then the slow approach to
+/// equilibrium).
+class TransientProblem
+{
+public:
+  TransientProblem(MPI_Comm comm, NonlinearProblem& problem,
+                   std::shared_ptr<dolfinx::fem::Function<double>> rate,
+                   dolfinx::fem::Constant<double>& shift,
+                   std::function<void(double)> set_time, double end_time,
+                   const std::string& prefix);
+  ~TransientProblem();
+  TransientProblem(const TransientProblem&) = delete;
+  TransientProblem& operator=(const TransientProblem&) = delete;
+
+  /// Run to the end time, calling `observe` after every accepted step with the problem at
+  /// that step's state. Throws ConvergenceError when TS gives up; the problem then holds the
+  /// last accepted state. Returns the number of steps taken.
+  int run(const std::function<void(const TransientStep&)>& observe);
+
+  /// For the C callbacks.
+  void form_function(double t, Vec w, Vec w_dot, Vec F);
+  void form_jacobian(double t, Vec w, Vec w_dot, double shift, Mat P);
+  void accepted(int step, double t, Vec w);
+  void check_step_size();
+  /// An exception a callback raised, rethrown by run() after TSSolve returns
+  std::exception_ptr callback_error;
+
+private:
+  /// The problem's unknowns and the rate coefficient at (t, w, w')
+  void set_state(double t, Vec w, Vec w_dot);
+
+  NonlinearProblem& _problem;
+  std::shared_ptr<dolfinx::fem::Function<double>> _rate;
+  dolfinx::fem::Constant<double>& _shift;
+  std::function<void(double)> _set_time;
+  std::string _prefix;
+  double _end_time, _min_step;
+  double _too_small_step = 0;
+  TS _ts = nullptr;
+  Mat _jacobian = nullptr;
+  StepCounters _counters;
+  const std::function<void(const TransientStep&)>* _observe = nullptr;
+};
+
+} // namespace gelx

@@ -1,0 +1,227 @@
+// gelx scene: swelling — a gel layer bonded to a rigid substrate takes up solvent in time
+//
+// Sample runs:
+//   ./gelx run swelling
+//   ./gelx run swelling --chi 0.2 --lambda0 1.2 --end_time 2e4
+//   ./gelx run swelling --mu -0.0001 --end_time 500        (a small step: the linear limit)
+//
+// A layer of thickness H of the Flory-Rehner gel (thesis Eq. 4.28) in the coupled theory of
+// solvent diffusion and large deformation of Hong, Zhao, Zhou and Suo (forms/swelling.py:
+// unknowns the displacement u and the solvent's chemical potential mu, in units of kT, on
+// Q2-Q1 hexahedra). The reference state is the gel swollen freely to the stretch lambda0 from
+// dry (polymer fraction phi0 = lambda0^-3), stress-free at the chemical potential mu0 that
+// holds it there (cpp/theory: mu0 = phi0^2 (chi - chi_free(phi0)), Eq. 4.7); in that state it
+// was bonded to the substrate at z = 0 (u = 0, no flux) and its sides held laterally (rollers,
+// no flux): a piece of a wide layer. At t = 0 the surface z = H meets a solvent of chemical
+// potential mu (0: pure solvent), reached on the smooth step over --ramp_time,
+// and the solvent diffuses in, D its diffusivity. PETSc TS (adaptive BDF2, options
+// -swelling_ts_*) follows the transient to --end_time. At every step the run records the
+// layer's thickness and its swelling ratio V/V0 (the solvent taken up: polymer and solvent
+// are incompressible), and writes displacement, chemical potential and Cauchy stress to
+// fields.xdmf at --outputs times spaced evenly in log t.
+
+#include "swelling.h"
+
+#include <cmath>
+#include <cstdio>
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/utils.h>
+#include <gelx/io/mesh.h>
+#include <gelx/io/program.h>
+#include <gelx/solvers/dynamics.h>
+#include <gelx/solvers/transient.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/systems/forms.h>
+#include <gelx/systems/mixed.h>
+#include <gelx/systems/problem.h>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/io/progress.h>
+#include <theory/flory_rehner.h>
+
+using namespace dolfinx;
+
+namespace
+{
+/// The scene's parameters.
+struct Layer
+{
+  double H = 1.0, W = 0.05; // thickness and width of the piece (mm)
+  int nz = 40;              // cells through the thickness
+  double grading = 2;       // their sizes shrink towards the surface: z = H (1 - (1 - s)^grading)
+  double n = 1e-3;          // N nu: the network's stiffness in kT/nu
+  double chi = 0.4;         // Flory's interaction parameter
+  double lambda0 = 1.5;     // the reference state's stretch from dry
+  double kT_nu = 137.0;     // kT / nu (MPa): water at 298 K, nu = 3e-29 m^3
+  double D = 1e-3;          // the solvent's diffusivity (mm^2/s)
+  double mu = 0.0;          // the solvent's chemical potential at the surface (kT)
+  double ramp_time = 1.0;   // its smooth step from mu0 (s)
+  double end_time = 3000.0; // s
+  int outputs = 20;         // field outputs, evenly in log t
+};
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  // 1. Scene parameters, with their defaults and validity checks
+  Layer p;
+  gelx::Parameters prm;
+  using P = gelx::Parameters;
+  prm.bind("geometry", "H", p.H, "thickness of the layer in the reference state [mm]",
+           P::positive);
+  prm.bind("geometry", "W", p.W, "width of the piece modelled (its sides are held) [mm]",
+           P::positive);
+  prm.bind("mesh", "nz", p.nz, "hexahedra through the thickness", P::at_least_one);
+  prm.bind("mesh", "grading", p.grading,
+           "cells shrink towards the surface, z = H (1 - (1 - s)^grading) for s evenly "
+           "spaced in [0, 1] (1: even; 2: the surface cell H/nz^2), where a thin swollen skin "
+           "forms first",
+           [](double v) { return v >= 1 ? "" : "must be at least 1"; });
+  prm.bind("material", "n", p.n, "N nu: the network's stiffness in units of kT/nu",
+           P::positive);
+  prm.bind("material", "chi", p.chi, "Flory's polymer-solvent interaction parameter");
+  prm.bind("material", "lambda0", p.lambda0,
+           "stretch of the stress-free reference state from dry (> 1: phi0 = lambda0^-3)",
+           [](double v) { return v > 1 ? "" : "must exceed 1 (the dry state is singular)"; });
+  prm.bind("material", "kT_nu", p.kT_nu, "energy scale kT/nu [MPa]", P::positive);
+  prm.bind("material", "D", p.D, "diffusivity of the solvent [mm^2/s]", P::positive);
+  prm.bind("load", "mu", p.mu,
+           "chemical potential of the solvent at the surface, in kT (0: pure solvent)",
+           [](double v) { return v <= 0 ? "" : "must be at most 0 (the pure solvent's)"; });
+  prm.bind("load", "ramp_time", p.ramp_time,
+           "time of the smooth step from mu0 to mu [s] (a jump at t = 0 is no transient the "
+           "time steps' error estimate accepts at any size)",
+           P::positive);
+  prm.bind("time", "end_time", p.end_time, "time the transient is followed to [s]",
+           P::positive);
+  prm.bind("output", "outputs", p.outputs, "field outputs, evenly spaced in log t",
+           P::at_least_one);
+
+  return gelx::run_program(argc, argv, "gelx-swelling", prm, [&](gelx::Run& run)
+  {
+    const double phi0 = std::pow(p.lambda0, -3.0);
+    const double mu0 = phi0 * phi0 * (p.chi - gelx::theory::chi_free(phi0, p.n));
+    if (p.mu < mu0)
+      throw gelx::InputError("--mu " + std::to_string(p.mu) + " is below mu0 = "
+                             + std::to_string(mu0)
+                             + ", the reference state's: the layer would shrink (give a "
+                               "lambda0 that holds less solvent)");
+
+    // 2. A piece of the layer: W x W x H, one column of hexahedra through the thickness
+    const gelx::TaggedMesh geo = gelx::box_mesh(
+        run.comm(), {p.W, p.W, p.H}, {1, 1, std::size_t(p.nz)}, mesh::CellType::hexahedron);
+    // Graded towards the surface: the skin's swollen gel has a low diffusivity (its mobility
+    // (J - phi0) C^-1 falls, and mu's slope dmu/dJ with it), so it swells in a layer of
+    // thickness sqrt(D_skin t), a few micrometres in the first seconds
+    for (std::size_t i = 2; i < geo.mesh->geometry().x().size(); i += 3)
+    {
+      double& z = geo.mesh->geometry().x()[i];
+      z = p.H * (1 - std::pow(1 - z / p.H, p.grading));
+    }
+
+    // 3. The (u, mu) space, its rate, the constants, residual and tangent (forms/swelling.py)
+    auto W = std::make_shared<fem::FunctionSpace>(
+        fem::create_functionspace(functionspace_form_swelling_residual, "w", geo.mesh));
+    auto w = std::make_shared<fem::Function<double>>(W);
+    auto w_dot = std::make_shared<fem::Function<double>>(W);
+    gelx::FormBinding forms(geo.mesh, {{"w", w}, {"w_dot", w_dot}},
+                            {{"n", p.n}, {"phi0", phi0}, {"chi", p.chi}, {"kT_nu", p.kT_nu},
+                             {"D", p.D}, {"shift", 0.0}});
+    auto U = W->sub({0});
+    auto M = W->sub({1});
+    auto [M_collapsed, mu_dofs] = M->collapse();
+    // The reference state: at rest at mu0
+    for (std::int32_t dof : mu_dofs)
+      w->x()->mutable_array()[dof] = mu0;
+
+    // 4. Bonded at z = 0, sides held laterally; the surface z = H at the solvent's mu(t)
+    gelx::DirichletConditions supports(U, geo.facet_tags);
+    supports.clamp(geo.tag("z_min"));
+    supports.fix(geo.tag("x_min"), 0);
+    supports.fix(geo.tag("x_max"), 0);
+    supports.fix(geo.tag("y_min"), 1);
+    supports.fix(geo.tag("y_max"), 1);
+    auto surface_mu = std::make_shared<fem::Function<double>>(
+        std::make_shared<fem::FunctionSpace>(std::move(M_collapsed)));
+    const int surface = geo.tag("z_max");
+    auto surface_dofs = fem::locate_dofs_topological(
+        {*M, *surface_mu->function_space()}, 2, geo.facet_tags->find(surface));
+    auto bcs = supports.bcs();
+    bcs.push_back(
+        std::make_shared<fem::DirichletBC<double>>(surface_mu, std::move(surface_dofs), M));
+    const auto set_time = [&](double t)
+    {
+      surface_mu->x()->set(mu0 + gelx::smooth_step(t, p.ramp_time) * (p.mu - mu0));
+    };
+    set_time(0);
+    gelx::NonlinearProblem problem(w, forms.form(form_swelling_residual, {W}),
+                                   forms.form(form_swelling_tangent, {W, W}), bcs,
+                                   forms.expression(expression_swelling_margin));
+    // TS's error tolerance: 1e-4 of the change of mu (a number of order 1e-2, in kT), which
+    // in mm is a finer one for the displacements (of order H (lambda - 1)); the user's win
+    char atol[32];
+    std::snprintf(atol, sizeof atol, "%.6g", 1e-4 * std::abs(p.mu - mu0));
+    gelx::set_default_options("swelling_", {{"ts_rtol", "1e-4"}, {"ts_atol", atol}});
+    gelx::TransientProblem transient(run.comm(), problem, w_dot, forms.constant("shift"),
+                                     set_time, p.end_time, "swelling_");
+
+    // 5. Output: displacement and chemical potential at the nodes, stress per cell
+    gelx::ResultsWriter& results = run.results(geo.mesh);
+    auto u = gelx::collapse_sub_function(*w, 0);
+    auto mu = gelx::collapse_sub_function(*w, 1);
+    gelx::FieldSet fields;
+    fields.add("displacement", u);
+    fields.add("chemical_potential", mu);
+    fields.add("cauchy_stress", forms.expression(expression_swelling_stress));
+    const auto volume = forms.form(form_swelling_volume);
+    const double V0 = gelx::assemble_global_scalar(*volume);
+    const auto thickness = [&]
+    { return p.H + gelx::component_range(*u, *geo.facet_tags, surface, 2).second; };
+    run.summary = {{"num_dofs", W->dofmap()->index_map->size_global()},
+                   {"mu0", mu0},
+                   {"phi0", phi0}};
+
+    // 6. The transient; fields at times evenly spaced in log t from the first step's to the end
+    std::vector<double> output_times;
+    double first_time = 0;
+    int newton_iterations = 0;
+    gelx::ProgressLine progress(
+        run.comm(), {.quantity = [&]
+                     { return gelx::quantity_text("thickness", run.summary["thickness"]); }});
+    const int steps = transient.run(
+        [&](const gelx::TransientStep& s)
+        {
+          const double t = s.time;
+          if (s.step.step == 1)
+            first_time = t;
+          if (s.step.step == 1)
+            for (int k = 1; k <= p.outputs; ++k)
+              output_times.push_back(t * std::pow(p.end_time / t, double(k) / p.outputs));
+          gelx::copy_sub_function(*w, 0, *u);
+          gelx::copy_sub_function(*w, 1, *mu);
+          newton_iterations += s.step.newton.iterations;
+          const nlohmann::json quantities
+              = {{"thickness", thickness()},
+                 {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0}};
+          nlohmann::json row = {{"step", s.step.step},
+                                {"time", t},
+                                {"dt", s.step.step_size},
+                                {"newton_iterations", s.step.newton.iterations},
+                                {"linear_iterations", s.step.newton.linear_iterations},
+                                {"rejected", s.step.cutbacks},
+                                {"wall_time", s.step.wall_time}};
+          row.update(quantities);
+          results.append_step(row);
+          if (!output_times.empty() && t >= output_times.front() * (1 - 1e-12))
+          {
+            results.write_fields(t, fields.update());
+            while (!output_times.empty() && output_times.front() <= t * (1 + 1e-12))
+              output_times.erase(output_times.begin());
+          }
+          run.summary.update(quantities);
+          run.summary.update({{"time", t}, {"newton_iterations", newton_iterations}});
+          // how far, in log t (the transient spans decades)
+          progress.print(s.step, t, std::log(t / first_time) / std::log(p.end_time / first_time));
+        });
+    run.summary["steps"] = steps;
+  });
+}

@@ -31,6 +31,12 @@ dl/dt = d/dz (D (l - phi0) / l^2 dmu/dz), is one nonlinear diffusion equation.
 4. The equilibrium limit: the layer in pure solvent (mu = 0) followed to equilibrium, its
    thickness H l_inf with P(l_inf) = 0, to 1e-6, for chi = 0.2, 0.4, 0.6 at N nu = 1e-3.
 
+5. Free swelling: the eighth of a free cube (--sides free, all faces in pure solvent) followed
+   to equilibrium swells isotropically, V/V0 = a^3 with dU_iso/da = 0 for the energy of the
+   stretch a I, U_iso(a) = n/2 phi0 (3 phi0^(-2/3) a^2 - 3 - ln(a^3/phi0))
+   + (a^3 - phi0) ln(1 - phi0/a^3) + chi phi0 (1 - phi0/a^3), to 1e-6 (2 x 2 x 2 cells: the
+   state is homogeneous).
+
 usage: swelling_layer.py GELX_SWELLING WORK_DIR [MPIEXEC NP]
 """
 import csv
@@ -188,4 +194,19 @@ for chi in (0.2, 0.4, 0.6):
     checks.relative(f"chi = {chi}: the thickness at equilibrium against H lambda_inf = "
                     f"{H * l_inf:.9f} (P(lambda_inf) = 0)", summary["thickness"], H * l_inf,
                     1e-6)
+# 5. Free swelling of a cube
+chi = 0.4
+
+
+def isotropic_energy(a):
+    return (N_NU / 2 * PHI0 * (3 * PHI0**(-2 / 3) * a * a - 3 - np.log(a**3 / PHI0))
+            + (a**3 - PHI0) * np.log(1 - PHI0 / a**3) + chi * PHI0 * (1 - PHI0 / a**3))
+
+
+a = brentq(lambda a: (isotropic_energy(a + 1e-6) - isotropic_energy(a - 1e-6)) / 2e-6,
+           1 + 1e-6, 5.0, xtol=1e-15)
+summary, rows = run("free_cube", "--chi", str(chi), "--mu", "0", "--sides", "free", "--W",
+                    str(H), "--nx", "2", "--nz", "2", "--end_time", "1e8")
+checks.relative(f"free cube, chi = {chi}: V/V0 at equilibrium against a^3 = {a**3:.9f} "
+                f"(dU_iso/da = 0)", summary["swelling_ratio"], a**3, 1e-6)
 checks.finish()

@@ -3,7 +3,7 @@
 // Sample runs:
 //   ./gelx run swelling
 //   ./gelx run swelling --chi 0.2 --lambda0 1.2 --end_time 2e4
-//   ./gelx run swelling --mu -0.0001 --end_time 500        (a small step: the linear limit)
+//   ./gelx run swelling --sides free --W 1 --nx 4 --nz 4 --end_time 1e8   (a free cube)
 //
 // A layer of thickness H of the Flory-Rehner gel (thesis Eq. 4.28) in the coupled theory of
 // solvent diffusion and large deformation of Hong, Zhao, Zhou and Suo (forms/swelling.py:
@@ -12,7 +12,8 @@
 // dry (polymer fraction phi0 = lambda0^-3), stress-free at the chemical potential mu0 that
 // holds it there (cpp/theory: mu0 = phi0^2 (chi - chi_free(phi0)), Eq. 4.7); in that state it
 // was bonded to the substrate at z = 0 (u = 0, no flux) and its sides held laterally (rollers,
-// no flux): a piece of a wide layer. At t = 0 the surface z = H meets a solvent of chemical
+// no flux): a piece of a wide layer (or, --sides free, the piece is an eighth of a free block,
+// in solvent on its three outer faces). At t = 0 the surface z = H meets a solvent of chemical
 // potential mu (0: pure solvent), reached on the smooth step over --ramp_time,
 // and the solvent diffuses in, D its diffusivity. PETSc TS (adaptive BDF2, options
 // -swelling_ts_*) follows the transient to --end_time. At every step the run records the
@@ -23,6 +24,7 @@
 #include "swelling.h"
 
 #include <cmath>
+#include <array>
 #include <cstdio>
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/utils.h>
@@ -46,7 +48,8 @@ namespace
 struct Layer
 {
   double H = 1.0, W = 0.05; // thickness and width of the piece (mm)
-  int nz = 40;              // cells through the thickness
+  std::string sides = "held"; // held: a piece of a wide layer; free: an eighth of a block
+  int nx = 1, nz = 40;      // cells across the width and through the thickness
   double grading = 2;       // their sizes shrink towards the surface: z = H (1 - (1 - s)^grading)
   double n = 1e-3;          // N nu: the network's stiffness in kT/nu
   double chi = 0.4;         // Flory's interaction parameter
@@ -68,13 +71,18 @@ int main(int argc, char* argv[])
   using P = gelx::Parameters;
   prm.bind("geometry", "H", p.H, "thickness of the layer in the reference state [mm]",
            P::positive);
-  prm.bind("geometry", "W", p.W, "width of the piece modelled (its sides are held) [mm]",
-           P::positive);
+  prm.bind("geometry", "W", p.W, "width of the piece modelled [mm]", P::positive);
+  prm.bind("geometry", "sides", p.sides,
+           "held: the piece's sides held laterally without flux (a wide layer bonded at z = 0); "
+           "free: the piece is the eighth x, y, z > 0 of a free 2W x 2W x 2H block, in solvent "
+           "on its faces x = W, y = W, z = H",
+           P::one_of({"held", "free"}));
+  prm.bind("mesh", "nx", p.nx, "hexahedra across the width", P::at_least_one);
   prm.bind("mesh", "nz", p.nz, "hexahedra through the thickness", P::at_least_one);
   prm.bind("mesh", "grading", p.grading,
-           "cells shrink towards the surface, z = H (1 - (1 - s)^grading) for s evenly "
-           "spaced in [0, 1] (1: even; 2: the surface cell H/nz^2), where a thin swollen skin "
-           "forms first",
+           "cells shrink towards the faces in solvent, z = H (1 - (1 - s)^grading) for s "
+           "evenly spaced in [0, 1] (1: even; 2: the surface cell H/nz^2), where a thin "
+           "swollen skin forms first",
            [](double v) { return v >= 1 ? "" : "must be at least 1"; });
   prm.bind("material", "n", p.n, "N nu: the network's stiffness in units of kT/nu",
            P::positive);
@@ -106,17 +114,21 @@ int main(int argc, char* argv[])
                              + ", the reference state's: the layer would shrink (give a "
                                "lambda0 that holds less solvent)");
 
-    // 2. A piece of the layer: W x W x H, one column of hexahedra through the thickness
+    // 2. The piece: W x W x H hexahedra
+    const bool free = p.sides == "free";
     const gelx::TaggedMesh geo = gelx::box_mesh(
-        run.comm(), {p.W, p.W, p.H}, {1, 1, std::size_t(p.nz)}, mesh::CellType::hexahedron);
-    // Graded towards the surface: the skin's swollen gel has a low diffusivity (its mobility
-    // (J - phi0) C^-1 falls, and mu's slope dmu/dJ with it), so it swells in a layer of
+        run.comm(), {p.W, p.W, p.H}, {std::size_t(p.nx), std::size_t(p.nx), std::size_t(p.nz)},
+        mesh::CellType::hexahedron);
+    // Graded towards the faces in solvent: the swollen gel of the skin has a low mobility
+    // ((J - phi0) C^-1 falls, and mu's slope dmu/dJ with it), so it swells in a layer of
     // thickness sqrt(D_skin t), a few micrometres in the first seconds
-    for (std::size_t i = 2; i < geo.mesh->geometry().x().size(); i += 3)
-    {
-      double& z = geo.mesh->geometry().x()[i];
-      z = p.H * (1 - std::pow(1 - z / p.H, p.grading));
-    }
+    const std::array<double, 3> size{p.W, p.W, p.H};
+    for (int axis = free ? 0 : 2; axis < 3; ++axis)
+      for (std::size_t i = axis; i < geo.mesh->geometry().x().size(); i += 3)
+      {
+        double& x = geo.mesh->geometry().x()[i];
+        x = size[axis] * (1 - std::pow(1 - x / size[axis], p.grading));
+      }
 
     // 3. The (u, mu) space, its rate, the constants, residual and tangent (forms/swelling.py)
     auto W = std::make_shared<fem::FunctionSpace>(
@@ -133,21 +145,36 @@ int main(int argc, char* argv[])
     for (std::int32_t dof : mu_dofs)
       w->x()->mutable_array()[dof] = mu0;
 
-    // 4. Bonded at z = 0, sides held laterally; the surface z = H at the solvent's mu(t)
+    // 4. Held: bonded at z = 0, the sides held laterally, the surface z = H in solvent. Free:
+    //    the symmetry planes x, y, z = 0 (rollers), the faces x = W, y = W, z = H in solvent.
+    //    No flux through any other face
     gelx::DirichletConditions supports(U, geo.facet_tags);
-    supports.clamp(geo.tag("z_min"));
-    supports.fix(geo.tag("x_min"), 0);
-    supports.fix(geo.tag("x_max"), 0);
-    supports.fix(geo.tag("y_min"), 1);
-    supports.fix(geo.tag("y_max"), 1);
+    std::vector<int> in_solvent{geo.tag("z_max")};
+    if (free)
+    {
+      supports.fix(geo.tag("x_min"), 0);
+      supports.fix(geo.tag("y_min"), 1);
+      supports.fix(geo.tag("z_min"), 2);
+      in_solvent.insert(in_solvent.end(), {geo.tag("x_max"), geo.tag("y_max")});
+    }
+    else
+    {
+      supports.clamp(geo.tag("z_min"));
+      supports.fix(geo.tag("x_min"), 0);
+      supports.fix(geo.tag("x_max"), 0);
+      supports.fix(geo.tag("y_min"), 1);
+      supports.fix(geo.tag("y_max"), 1);
+    }
     auto surface_mu = std::make_shared<fem::Function<double>>(
         std::make_shared<fem::FunctionSpace>(std::move(M_collapsed)));
-    const int surface = geo.tag("z_max");
-    auto surface_dofs = fem::locate_dofs_topological(
-        {*M, *surface_mu->function_space()}, 2, geo.facet_tags->find(surface));
     auto bcs = supports.bcs();
-    bcs.push_back(
-        std::make_shared<fem::DirichletBC<double>>(surface_mu, std::move(surface_dofs), M));
+    for (int face : in_solvent)
+      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(
+          surface_mu,
+          fem::locate_dofs_topological({*M, *surface_mu->function_space()}, 2,
+                                       geo.facet_tags->find(face)),
+          M));
+    const int surface = geo.tag("z_max");
     const auto set_time = [&](double t)
     {
       surface_mu->x()->set(mu0 + gelx::smooth_step(t, p.ramp_time) * (p.mu - mu0));

@@ -286,20 +286,6 @@ PetscErrorCode form_jacobian(TS, PetscReal t, Vec u, Vec, PetscReal shift, Mat, 
   return guarded_callback(d.callback_error, [&] { d.form_jacobian(t, u, shift, P); });
 }
 
-PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec u, void* ctx)
-{
-  DampedDynamics& d = dynamics_of(ctx);
-  return guarded_callback(d.callback_error, [&] { d.accepted(int(step), t, u); });
-}
-
-PetscErrorCode post_step(TS ts)
-{
-  void* ctx;
-  PetscCall(TSGetApplicationContext(ts, &ctx));
-  DampedDynamics& d = dynamics_of(ctx);
-  return guarded_callback(d.callback_error, [&] { d.check_step_size(); });
-}
-
 PetscErrorCode pre_step(TS ts)
 {
   void* ctx;
@@ -378,9 +364,9 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSSetIFunction(_ts, r, gelx::form_function, this));
   GELX_PETSC(VecDestroy(&r));
   GELX_PETSC(TSSetIJacobian(_ts, _jacobian, _jacobian, gelx::form_jacobian, this));
-  GELX_PETSC(TSMonitorSet(_ts, monitor, this, nullptr));
+  GELX_PETSC(TSMonitorSet(_ts, monitor_accepted<DampedDynamics>, this, nullptr));
   GELX_PETSC(TSSetApplicationContext(_ts, this));
-  GELX_PETSC(TSSetPostStep(_ts, post_step));
+  GELX_PETSC(TSSetPostStep(_ts, post_step_check<DampedDynamics>));
   GELX_PETSC(TSSetPreStep(_ts, gelx::pre_step));
   GELX_PETSC(TSSetFromOptions(_ts));
   refuse_unread_options_of(prefix);

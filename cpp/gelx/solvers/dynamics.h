@@ -3,6 +3,7 @@
 /// Damped quasi-static dynamics: a NonlinearSystem followed through time with PETSc TS, its
 /// loads ramped smoothly, the energies of ABAQUS' quasi-static checks recorded at every step.
 
+#include <gelx/common/petsc_utils.h>
 #include <gelx/solvers/path.h>
 #include <gelx/systems/system.h>
 
@@ -55,6 +56,23 @@ double quadratic_form(Mat A, Vec v, Vec work);
 /// measured) then has every other stage rejected and the others accepted at 1e-16 s, for
 /// ever.
 double stop_below_min_step(TS ts, double min_step);
+/// TS's monitor and post-step hook for a gelx integrator (DampedDynamics, InertialDynamics,
+/// TransientProblem: the TS's monitor and application context) with accepted(step, t, u),
+/// check_step_size() and callback_error: what they throw is kept for run() to rethrow.
+template <class Integrator>
+PetscErrorCode monitor_accepted(TS, PetscInt step, PetscReal t, Vec u, void* ctx)
+{
+  Integrator& d = *static_cast<Integrator*>(ctx);
+  return guarded_callback(d.callback_error, [&] { d.accepted(int(step), t, u); });
+}
+template <class Integrator>
+PetscErrorCode post_step_check(TS ts)
+{
+  void* ctx;
+  PetscCall(TSGetApplicationContext(ts, &ctx));
+  Integrator& d = *static_cast<Integrator*>(ctx);
+  return guarded_callback(d.callback_error, [&] { d.check_step_size(); });
+}
 /// The options both integrators default to (the user's win): TS `type`, basic adaptivity
 /// with steps up to loading_time / 10, the first step -PREFIXdt (or `first_step`), the end
 /// time loading + hold, failed Newton solves retried with smaller steps (20 in a row at

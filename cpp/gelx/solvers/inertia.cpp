@@ -62,12 +62,6 @@ PetscErrorCode form_jacobian(TS, PetscReal t, Vec u, Vec, Vec, PetscReal shift_v
   return guarded_callback(d.callback_error, [&] { d.form_jacobian(t, u, shift_v, shift_a, P); });
 }
 
-PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec u, void* ctx)
-{
-  InertialDynamics& d = dynamics_of(ctx);
-  return guarded_callback(d.callback_error, [&] { d.accepted(int(step), t, u); });
-}
-
 PetscErrorCode pre_step(TS ts)
 {
   void* ctx;
@@ -82,14 +76,6 @@ PetscErrorCode pre_stage(TS ts, PetscReal)
   PetscCall(TSGetApplicationContext(ts, &ctx));
   InertialDynamics& d = dynamics_of(ctx);
   return guarded_callback(d.callback_error, [&] { d.pre_stage(); });
-}
-
-PetscErrorCode post_step(TS ts)
-{
-  void* ctx;
-  PetscCall(TSGetApplicationContext(ts, &ctx));
-  InertialDynamics& d = dynamics_of(ctx);
-  return guarded_callback(d.callback_error, [&] { d.check_step_size(); });
 }
 
 PetscErrorCode prescribe(InertialDynamics& d, double t, Vec u, Vec v, Vec a)
@@ -215,11 +201,11 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSSetI2Function(_ts, r, gelx::form_function, this));
   GELX_PETSC(VecDestroy(&r));
   GELX_PETSC(TSSetI2Jacobian(_ts, _jacobian, _jacobian, gelx::form_jacobian, this));
-  GELX_PETSC(TSMonitorSet(_ts, monitor, this, nullptr));
+  GELX_PETSC(TSMonitorSet(_ts, monitor_accepted<InertialDynamics>, this, nullptr));
   GELX_PETSC(TSSetApplicationContext(_ts, this));
   GELX_PETSC(TSSetPreStep(_ts, gelx::pre_step));
   GELX_PETSC(TSSetPreStage(_ts, gelx::pre_stage));
-  GELX_PETSC(TSSetPostStep(_ts, post_step));
+  GELX_PETSC(TSSetPostStep(_ts, post_step_check<InertialDynamics>));
   GELX_PETSC(TSSetFromOptions(_ts));
   refuse_unread_options_of(prefix);
   reject_failed_line_searches(_ts);

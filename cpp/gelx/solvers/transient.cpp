@@ -25,19 +25,6 @@ PetscErrorCode form_jacobian(TS, PetscReal t, Vec w, Vec w_dot, PetscReal shift,
   return guarded_callback(p.callback_error, [&] { p.form_jacobian(t, w, w_dot, shift, P); });
 }
 
-PetscErrorCode monitor(TS, PetscInt step, PetscReal t, Vec w, void* ctx)
-{
-  TransientProblem& p = transient_of(ctx);
-  return guarded_callback(p.callback_error, [&] { p.accepted(int(step), t, w); });
-}
-
-PetscErrorCode post_step(TS ts)
-{
-  void* ctx;
-  PetscCall(TSGetApplicationContext(ts, &ctx));
-  TransientProblem& p = transient_of(ctx);
-  return guarded_callback(p.callback_error, [&] { p.check_step_size(); });
-}
 } // namespace
 
 TransientProblem::TransientProblem(MPI_Comm comm, NonlinearProblem& problem,
@@ -59,9 +46,9 @@ TransientProblem::TransientProblem(MPI_Comm comm, NonlinearProblem& problem,
   GELX_PETSC(TSSetIFunction(_ts, r, gelx::form_function, this));
   GELX_PETSC(VecDestroy(&r));
   GELX_PETSC(TSSetIJacobian(_ts, _jacobian, _jacobian, gelx::form_jacobian, this));
-  GELX_PETSC(TSMonitorSet(_ts, monitor, this, nullptr));
+  GELX_PETSC(TSMonitorSet(_ts, monitor_accepted<TransientProblem>, this, nullptr));
   GELX_PETSC(TSSetApplicationContext(_ts, this));
-  GELX_PETSC(TSSetPostStep(_ts, post_step));
+  GELX_PETSC(TSSetPostStep(_ts, post_step_check<TransientProblem>));
   GELX_PETSC(TSSetFromOptions(_ts));
   refuse_unread_options_of(prefix);
   reject_failed_line_searches(_ts);

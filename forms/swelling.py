@@ -1,7 +1,8 @@
 """A gel that swells in time: solvent diffusion coupled to large deformation (Hong, Zhao, Zhou
-& Suo, JMPS 56, 2008; the mixed (u, mu) form of Bouklas, Landis & Huang, JMPS 2015), on Q2-Q1
-Taylor-Hood hexahedra (mu acts like a pressure as t -> 0+, when the gel deforms at fixed
-volume).
+& Suo, JMPS 56, 2008; the mixed (u, mu) form of Bouklas, Landis & Huang, JMPS 2015), on
+hexahedra: Q2-Q1 Taylor-Hood (suffix q2q1; mu acts like a pressure as t -> 0+, when the gel
+deforms at fixed volume, and this pair is inf-sup stable) and equal-order Q1-Q1 (q1q1, which
+is not: to show what that does).
 
 Unknowns w = (u, mu): the displacement from a pre-swollen, stress-free reference state (the
 mesh; polymer volume fraction phi0 = lambda0^-3) and the solvent's chemical potential mu in
@@ -22,19 +23,15 @@ residual holds the rate w_dot of w; its tangent dR/dw + shift dR/dw_dot is the J
 PETSc TS asks for (shift its constant). The conservation row is scaled by -kT_nu so that the
 coupling blocks are each other's transposes at shift 1.
 
-Exports: residual, tangent; volume (int J dX) and solvent (int (J - phi0) dX); the Cauchy
-stress and J at the cell midpoints; J - phi0 at the quadrature points (admissibility).
+Exports per element: residual, tangent, volume (int J dX: the solvent taken up, V - V0), the
+Cauchy stress at the cell midpoints and J - phi0 at the quadrature points (admissibility);
+coefficients w_*, w_dot_*.
 """
 import ufl
 import materials
 
 cell = "hexahedron"
 mesh = ufl.Mesh(ufl.VectorElement("Lagrange", cell, 1))
-element = ufl.MixedElement([ufl.VectorElement("Lagrange", cell, 2),
-                            ufl.FiniteElement("Lagrange", cell, 1)])
-W = ufl.FunctionSpace(mesh, element)
-w = ufl.Coefficient(W)  # (u, mu)
-w_dot = ufl.Coefficient(W)  # its rate
 n = ufl.Constant(mesh)  # N nu: the network's stiffness in units of kT/nu
 phi0 = ufl.Constant(mesh)  # polymer volume fraction of the reference state
 chi = ufl.Constant(mesh)  # Flory's interaction parameter
@@ -42,25 +39,40 @@ kT_nu = ufl.Constant(mesh)  # energy scale kT/nu (MPa)
 D = ufl.Constant(mesh)  # solvent diffusivity (mm^2/s)
 shift = ufl.Constant(mesh)  # TS's shift: d(w_dot)/dw of the implicit scheme
 
-u, mu = ufl.split(w)
-u_dot, _ = ufl.split(w_dot)
-v, q = ufl.TestFunctions(W)
-F = materials.deformation_gradient(u)
-J = ufl.det(F)
-psi = materials.flory_rehner_gel(F, n, phi0, chi, kT_nu) - kT_nu * mu * (J - phi0)
-dx = ufl.dx(metadata={"quadrature_degree": materials.quadrature_degree(2)})
 
-J_dot = J * ufl.inner(ufl.inv(F).T, ufl.grad(u_dot))
-flux = -D * (J - phi0) * ufl.inv(F.T * F) * ufl.grad(mu)
-residual = (ufl.inner(materials.first_piola(psi, F), ufl.grad(v)) * dx
-            - kT_nu * (J_dot * q - ufl.inner(flux, ufl.grad(q))) * dx)
-dw = ufl.TrialFunction(W)
-tangent = ufl.derivative(residual, w, dw) + shift * ufl.derivative(residual, w_dot, dw)
+def gel(w, w_dot, degree):
+    u, mu = ufl.split(w)
+    u_dot, _ = ufl.split(w_dot)
+    W = w.ufl_function_space()
+    v, q = ufl.TestFunctions(W)
+    F = materials.deformation_gradient(u)
+    J = ufl.det(F)
+    psi = materials.flory_rehner_gel(F, n, phi0, chi, kT_nu) - kT_nu * mu * (J - phi0)
+    quadrature = materials.quadrature_degree(degree)
+    dx = ufl.dx(metadata={"quadrature_degree": quadrature})
+    J_dot = J * ufl.inner(ufl.inv(F).T, ufl.grad(u_dot))
+    flux = -D * (J - phi0) * ufl.inv(F.T * F) * ufl.grad(mu)
+    residual = (ufl.inner(materials.first_piola(psi, F), ufl.grad(v)) * dx
+                - kT_nu * (J_dot * q - ufl.inner(flux, ufl.grad(q))) * dx)
+    dw = ufl.TrialFunction(W)
+    tangent = ufl.derivative(residual, w, dw) + shift * ufl.derivative(residual, w_dot, dw)
+    return (residual, tangent, J * dx, materials.cauchy_stress(psi, F), J - phi0,
+            materials.quadrature_points(cell, quadrature))
 
-volume = J * dx
-solvent = (J - phi0) * dx
-stress = materials.cauchy_stress(psi, F)
-margin = J - phi0
-forms = [residual, tangent, volume, solvent]
-expressions = [(stress, materials.centroid(cell)), (J, materials.centroid(cell)),
-               (margin, materials.quadrature_points(cell, materials.quadrature_degree(2)))]
+
+def space(degree):
+    return ufl.FunctionSpace(mesh, ufl.MixedElement([ufl.VectorElement("Lagrange", cell, degree),
+                                                     ufl.FiniteElement("Lagrange", cell, 1)]))
+
+
+# Module-level names name the generated forms, expressions and coefficients (FFCx)
+W_q2q1, W_q1q1 = space(2), space(1)
+w_q2q1, w_dot_q2q1 = ufl.Coefficient(W_q2q1), ufl.Coefficient(W_q2q1)  # (u, mu), its rate
+w_q1q1, w_dot_q1q1 = ufl.Coefficient(W_q1q1), ufl.Coefficient(W_q1q1)
+residual_q2q1, tangent_q2q1, volume_q2q1, stress_q2q1, margin_q2q1, _points_q2q1 = gel(
+    w_q2q1, w_dot_q2q1, 2)
+residual_q1q1, tangent_q1q1, volume_q1q1, stress_q1q1, margin_q1q1, _points_q1q1 = gel(
+    w_q1q1, w_dot_q1q1, 1)
+forms = [residual_q2q1, tangent_q2q1, volume_q2q1, residual_q1q1, tangent_q1q1, volume_q1q1]
+expressions = [(stress_q2q1, materials.centroid(cell)), (margin_q2q1, _points_q2q1),
+               (stress_q1q1, materials.centroid(cell)), (margin_q1q1, _points_q1q1)]

@@ -8,7 +8,8 @@
 // A layer of thickness H of the Flory-Rehner gel (thesis Eq. 4.28) in the coupled theory of
 // solvent diffusion and large deformation of Hong, Zhao, Zhou and Suo (forms/swelling.py:
 // unknowns the displacement u and the solvent's chemical potential mu, in units of kT, on
-// Q2-Q1 hexahedra). The reference state is the gel swollen freely to the stretch lambda0 from
+// Q2-Q1 hexahedra, or equal-order Q1-Q1 to see what an element that is not inf-sup stable
+// does). The reference state is the gel swollen freely to the stretch lambda0 from
 // dry (polymer fraction phi0 = lambda0^-3), stress-free at the chemical potential mu0 that
 // holds it there (cpp/theory: mu0 = phi0^2 (chi - chi_free(phi0)), Eq. 4.7); in that state it
 // was bonded to the substrate at z = 0 (u = 0, no flux) and its sides held laterally (rollers,
@@ -26,6 +27,8 @@
 #include <cmath>
 #include <array>
 #include <cstdio>
+#include <map>
+#include <string>
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/utils.h>
 #include <gelx/io/mesh.h>
@@ -44,12 +47,30 @@ using namespace dolfinx;
 
 namespace
 {
+/// The generated kernels of one element (forms/swelling.py)
+struct Kernels
+{
+  const char *w, *w_dot;
+  ufcx_function_space* (*space)(const char*);
+  ufcx_form *residual, *tangent, *volume;
+  ufcx_expression *stress, *margin;
+};
+#define SWELLING_KERNELS(element)                                                              \
+  {#element,                                                                                   \
+   {"w_" #element, "w_dot_" #element, functionspace_form_swelling_residual_##element,          \
+    form_swelling_residual_##element, form_swelling_tangent_##element,                         \
+    form_swelling_volume_##element, expression_swelling_stress_##element,                      \
+    expression_swelling_margin_##element}}
+const std::map<std::string, Kernels> kernels = {SWELLING_KERNELS(q2q1), SWELLING_KERNELS(q1q1)};
+#undef SWELLING_KERNELS
+
 /// The scene's parameters.
 struct Layer
 {
   double H = 1.0, W = 0.05; // thickness and width of the piece (mm)
   std::string sides = "held"; // held: a piece of a wide layer; free: an eighth of a block
   int nx = 1, nz = 40;      // cells across the width and through the thickness
+  std::string element = "q2q1"; // Taylor-Hood, or equal-order q1q1
   double grading = 2;       // their sizes shrink towards the surface: z = H (1 - (1 - s)^grading)
   double n = 1e-3;          // N nu: the network's stiffness in kT/nu
   double chi = 0.4;         // Flory's interaction parameter
@@ -77,6 +98,10 @@ int main(int argc, char* argv[])
            "free: the piece is the eighth x, y, z > 0 of a free 2W x 2W x 2H block, in solvent "
            "on its faces x = W, y = W, z = H",
            P::one_of({"held", "free"}));
+  prm.bind("mesh", "element", p.element,
+           "q2q1: Q2 displacements, Q1 chemical potential (Taylor-Hood, inf-sup stable); q1q1: "
+           "equal order, which is not",
+           P::one_of({"q2q1", "q1q1"}));
   prm.bind("mesh", "nx", p.nx, "hexahedra across the width", P::at_least_one);
   prm.bind("mesh", "nz", p.nz, "hexahedra through the thickness", P::at_least_one);
   prm.bind("mesh", "grading", p.grading,
@@ -131,11 +156,12 @@ int main(int argc, char* argv[])
       }
 
     // 3. The (u, mu) space, its rate, the constants, residual and tangent (forms/swelling.py)
+    const Kernels& k = kernels.at(p.element);
     auto W = std::make_shared<fem::FunctionSpace>(
-        fem::create_functionspace(functionspace_form_swelling_residual, "w", geo.mesh));
+        fem::create_functionspace(k.space, k.w, geo.mesh));
     auto w = std::make_shared<fem::Function<double>>(W);
     auto w_dot = std::make_shared<fem::Function<double>>(W);
-    gelx::FormBinding forms(geo.mesh, {{"w", w}, {"w_dot", w_dot}},
+    gelx::FormBinding forms(geo.mesh, {{k.w, w}, {k.w_dot, w_dot}},
                             {{"n", p.n}, {"phi0", phi0}, {"chi", p.chi}, {"kT_nu", p.kT_nu},
                              {"D", p.D}, {"shift", 0.0}});
     auto U = W->sub({0});
@@ -180,9 +206,8 @@ int main(int argc, char* argv[])
       surface_mu->x()->set(mu0 + gelx::smooth_step(t, p.ramp_time) * (p.mu - mu0));
     };
     set_time(0);
-    gelx::NonlinearProblem problem(w, forms.form(form_swelling_residual, {W}),
-                                   forms.form(form_swelling_tangent, {W, W}), bcs,
-                                   forms.expression(expression_swelling_margin));
+    gelx::NonlinearProblem problem(w, forms.form(k.residual, {W}), forms.form(k.tangent, {W, W}),
+                                   bcs, forms.expression(k.margin));
     // TS's error tolerance: 1e-4 of the change of mu (a number of order 1e-2, in kT), which
     // in mm is a finer one for the displacements (of order H (lambda - 1)); the user's win
     char atol[32];
@@ -198,8 +223,8 @@ int main(int argc, char* argv[])
     gelx::FieldSet fields;
     fields.add("displacement", u);
     fields.add("chemical_potential", mu);
-    fields.add("cauchy_stress", forms.expression(expression_swelling_stress));
-    const auto volume = forms.form(form_swelling_volume);
+    fields.add("cauchy_stress", forms.expression(k.stress));
+    const auto volume = forms.form(k.volume);
     const double V0 = gelx::assemble_global_scalar(*volume);
     const auto thickness = [&]
     { return p.H + gelx::component_range(*u, *geo.facet_tags, surface, 2).second; };

@@ -232,22 +232,22 @@ int main(int argc, char* argv[])
                    {"mu0", mu0},
                    {"phi0", phi0}};
 
-    // 6. The transient; fields at times evenly spaced in log t from the first step's to the end
-    std::vector<double> output_times;
+    // 6. The transient; fields at the times t1 (T/t1)^(k/outputs), k = 1 ... outputs, evenly
+    //    spaced in log t from the first step's t1 to the end T
     double first_time = 0;
+    int outputs_written = 0;
     int newton_iterations = 0;
     gelx::ProgressLine progress(
         run.comm(), {.quantity = [&]
                      { return gelx::quantity_text("thickness", run.summary["thickness"]); }});
+    const auto output_time = [&](int k)
+    { return first_time * std::pow(p.end_time / first_time, double(k) / p.outputs); };
     const int steps = transient.run(
         [&](const gelx::TransientStep& s)
         {
           const double t = s.time;
           if (s.step.step == 1)
             first_time = t;
-          if (s.step.step == 1)
-            for (int k = 1; k <= p.outputs; ++k)
-              output_times.push_back(t * std::pow(p.end_time / t, double(k) / p.outputs));
           gelx::copy_sub_function(*w, 0, *u);
           gelx::copy_sub_function(*w, 1, *mu);
           newton_iterations += s.step.newton.iterations;
@@ -263,16 +263,20 @@ int main(int argc, char* argv[])
                                 {"wall_time", s.step.wall_time}};
           row.update(quantities);
           results.append_step(row);
-          if (!output_times.empty() && t >= output_times.front() * (1 - 1e-12))
+          if (outputs_written < p.outputs && t >= output_time(outputs_written + 1) * (1 - 1e-12))
           {
             results.write_fields(t, fields.update());
-            while (!output_times.empty() && output_times.front() <= t * (1 + 1e-12))
-              output_times.erase(output_times.begin());
+            while (outputs_written < p.outputs
+                   && output_time(outputs_written + 1) <= t * (1 + 1e-12))
+              ++outputs_written;
           }
           run.summary.update(quantities);
           run.summary.update({{"time", t}, {"newton_iterations", newton_iterations}});
           // how far, in log t (the transient spans decades)
-          progress.print(s.step, t, std::log(t / first_time) / std::log(p.end_time / first_time));
+          progress.print(s.step, t,
+                         t < p.end_time ? std::log(t / first_time)
+                                              / std::log(p.end_time / first_time)
+                                        : 1.0);
         });
     run.summary["steps"] = steps;
   });

@@ -121,6 +121,8 @@ CASES = {
         ("supersaturated_solvent", ["--mu", "0.1"], "must be at most 0 (the pure solvent's)"),
         ("mu_below_reference", ["--mu", "-0.5"], "is below mu0"),
         ("flat_grading", ["--grading", "0.5"], "must be at least 1"),
+        ("bonded_ellipsoid", ["--shape", "ellipsoid"], "is a free body: give --sides free"),
+        ("unknown_shape", ["--shape", "cylinder"], "must be box or ellipsoid"),
     ],
     "bistrip": [
         ("unknown_layer_kind", ["--section", "B 9x3, Q 9x3"], "unknown kind 'Q'"),

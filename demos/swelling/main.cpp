@@ -4,6 +4,8 @@
 //   ./gelx run swelling
 //   ./gelx run swelling --chi 0.2 --lambda0 1.2 --end_time 2e4
 //   ./gelx run swelling --sides free --W 1 --nx 4 --nz 4 --end_time 1e8   (a free cube)
+//   ./gelx run swelling --sides free --shape ellipsoid --W 1 --nx 4 --nz 4 --end_time 1e8
+//                                                                  (a free sphere)
 //
 // A layer of thickness H of the Flory-Rehner gel (thesis Eq. 4.28) in the coupled theory of
 // solvent diffusion and large deformation of Hong, Zhao, Zhou and Suo (forms/swelling.py:
@@ -14,13 +16,14 @@
 // holds it there (cpp/theory: mu0 = phi0^2 (chi - chi_free(phi0)), Eq. 4.7); in that state it
 // was bonded to the substrate at z = 0 (u = 0, no flux) and its sides held laterally (rollers,
 // no flux): a piece of a wide layer (or, --sides free, the piece is an eighth of a free block,
-// in solvent on its three outer faces). At t = 0 the surface z = H meets a solvent of chemical
+// in solvent on its three outer faces, or with --shape ellipsoid of a free ellipsoid). At t = 0 the surface z = H meets a solvent of chemical
 // potential mu (0: pure solvent), reached on the smooth step over --ramp_time,
 // and the solvent diffuses in, D its diffusivity. PETSc TS (adaptive BDF2, options
 // -swelling_ts_*) follows the transient to --end_time. At every step the run records the
 // layer's thickness and its swelling ratio V/V0 (the solvent taken up: polymer and solvent
 // are incompressible), and writes displacement, chemical potential and Cauchy stress to
-// fields.xdmf at --outputs times spaced evenly in log t.
+// fields.xdmf at --outputs times spaced evenly in log t; it checkpoints every
+// --checkpoint_every steps and continues exactly with --restart.
 
 #include "swelling.h"
 
@@ -69,6 +72,7 @@ struct Layer
 {
   double H = 1.0, W = 0.05; // thickness and width of the piece (mm)
   std::string sides = "held"; // held: a piece of a wide layer; free: an eighth of a block
+  std::string shape = "box";  // box, or (free) an eighth of an ellipsoid W, W, H
   int nx = 1, nz = 40;      // cells across the width and through the thickness
   std::string element = "q2q1"; // Taylor-Hood, or equal-order q1q1
   double grading = 2;       // their sizes shrink towards the surface: z = H (1 - (1 - s)^grading)
@@ -98,6 +102,11 @@ int main(int argc, char* argv[])
            "free: the piece is the eighth x, y, z > 0 of a free 2W x 2W x 2H block, in solvent "
            "on its faces x = W, y = W, z = H",
            P::one_of({"held", "free"}));
+  prm.bind("geometry", "shape", p.shape,
+           "box: the W x W x H piece; ellipsoid (with --sides free): the eighth x, y, z > 0 "
+           "of a free ellipsoid of semi-axes W, W, H (a sphere when W = H), in solvent on its "
+           "surface",
+           P::one_of({"box", "ellipsoid"}));
   prm.bind("mesh", "element", p.element,
            "q2q1: Q2 displacements, Q1 chemical potential (Taylor-Hood, inf-sup stable); q1q1: "
            "equal order, which is not",
@@ -126,7 +135,8 @@ int main(int argc, char* argv[])
            P::positive);
   prm.bind("time", "end_time", p.end_time, "time the transient is followed to [s]",
            P::positive);
-  prm.bind("output", "outputs", p.outputs, "field outputs, evenly spaced in log t",
+  prm.bind("output", "outputs", p.outputs,
+           "field outputs, evenly spaced in log t from the first step to the end (1: the end)",
            P::at_least_one);
 
   return gelx::run_program(argc, argv, "gelx-swelling", prm, [&](gelx::Run& run)
@@ -138,6 +148,10 @@ int main(int argc, char* argv[])
                              + std::to_string(mu0)
                              + ", the reference state's: the layer would shrink (give a "
                                "lambda0 that holds less solvent)");
+
+    const bool ellipsoid = p.shape == "ellipsoid";
+    if (ellipsoid && p.sides != "free")
+      throw gelx::InputError("--shape ellipsoid is a free body: give --sides free");
 
     // 2. The piece: W x W x H hexahedra
     const bool free = p.sides == "free";
@@ -153,6 +167,20 @@ int main(int argc, char* argv[])
       {
         double& x = geo.mesh->geometry().x()[i];
         x = size[axis] * (1 - std::pow(1 - x / size[axis], p.grading));
+      }
+    // The ellipsoid: the box's point, at q in the unit cube's coordinates, moved along q's ray
+    // by a factor blending from 1 at the centre to 1 / |q| on the faces max q_k = 1, which
+    // land on the surface |q| = 1
+    if (ellipsoid)
+      for (std::size_t i = 0; i < geo.mesh->geometry().x().size(); i += 3)
+      {
+        double* x = &geo.mesh->geometry().x()[i];
+        const std::array<double, 3> q{x[0] / size[0], x[1] / size[1], x[2] / size[2]};
+        const double max = std::max({q[0], q[1], q[2]});
+        const double length = std::hypot(q[0], q[1], q[2]);
+        const double factor = length > 0 ? 1 + max * (max / length - 1) : 1;
+        for (int k = 0; k < 3; ++k)
+          x[k] *= factor;
       }
 
     // 3. The (u, mu) space, its rate, the constants, residual and tangent (forms/swelling.py)
@@ -232,16 +260,24 @@ int main(int argc, char* argv[])
                    {"mu0", mu0},
                    {"phi0", phi0}};
 
-    // 6. The transient; fields at the times t1 (T/t1)^(k/outputs), k = 1 ... outputs, evenly
-    //    spaced in log t from the first step's t1 to the end T
-    double first_time = 0;
-    int outputs_written = 0;
-    int newton_iterations = 0;
+    // 6. The transient; fields at the times t1 (T/t1)^(k/(outputs - 1)), k = 0 ... outputs - 1,
+    //    evenly spaced in log t from the first step's t1 to the end T (one output: T). A
+    //    checkpoint after a step (--checkpoint_every) holds w, TSBDF's history and this
+    //    record's state, so that --restart continues the run as if never stopped
+    const gelx::PathState start = run.start_path(problem);
+    const gelx::StepObserver checkpoints = run.checkpoints();
+    double first_time = start.scene.value("first_time", 0.0);
+    int outputs_written = start.scene.value("outputs_written", 0);
+    int newton_iterations = start.scene.value("newton_iterations", 0);
     gelx::ProgressLine progress(
         run.comm(), {.quantity = [&]
                      { return gelx::quantity_text("thickness", run.summary["thickness"]); }});
     const auto output_time = [&](int k)
-    { return first_time * std::pow(p.end_time / first_time, double(k) / p.outputs); };
+    {
+      return p.outputs == 1 ? p.end_time
+                            : first_time * std::pow(p.end_time / first_time,
+                                                    double(k) / (p.outputs - 1));
+    };
     const int steps = transient.run(
         [&](const gelx::TransientStep& s)
         {
@@ -263,11 +299,10 @@ int main(int argc, char* argv[])
                                 {"wall_time", s.step.wall_time}};
           row.update(quantities);
           results.append_step(row);
-          if (outputs_written < p.outputs && t >= output_time(outputs_written + 1) * (1 - 1e-12))
+          if (outputs_written < p.outputs && t >= output_time(outputs_written) * (1 - 1e-12))
           {
             results.write_fields(t, fields.update());
-            while (outputs_written < p.outputs
-                   && output_time(outputs_written + 1) <= t * (1 + 1e-12))
+            while (outputs_written < p.outputs && output_time(outputs_written) <= t * (1 + 1e-12))
               ++outputs_written;
           }
           run.summary.update(quantities);
@@ -277,7 +312,14 @@ int main(int argc, char* argv[])
                          t < p.end_time ? std::log(t / first_time)
                                               / std::log(p.end_time / first_time)
                                         : 1.0);
-        });
+          gelx::PathState state;
+          transient.save(state);
+          state.scene = {{"first_time", first_time},
+                         {"outputs_written", outputs_written},
+                         {"newton_iterations", newton_iterations}};
+          checkpoints(s.step, state);
+        },
+        start.step > 0 ? &start : nullptr);
     run.summary["steps"] = steps;
   });
 }

@@ -286,16 +286,8 @@ PetscErrorCode form_jacobian(TS, PetscReal t, Vec u, Vec, PetscReal shift, Mat, 
   return guarded_callback(d.callback_error, [&] { d.form_jacobian(t, u, shift, P); });
 }
 
-PetscErrorCode pre_step(TS ts)
-{
-  void* ctx;
-  PetscCall(TSGetApplicationContext(ts, &ctx));
-  DampedDynamics& d = dynamics_of(ctx);
-  return guarded_callback(d.callback_error, [&] { d.pre_step(); });
-}
-
 /// PETSc 3.18's TSBDF state, the struct TS_BDF of src/ts/impls/bdf/bdf.c, which PETSc keeps
-/// private (DampedDynamics' class comment says why gelx reads and writes it). Only the layout
+/// private (save_bdf_history says why gelx reads and writes it). Only the layout
 /// is repeated here, none of PETSc's code. work[0] is the newest state, work[1..n] the
 /// accepted ones before it at time[1..n]; k the order the next step uses.
 struct BdfState
@@ -326,11 +318,75 @@ BdfState& bdf_state(TS ts)
                                                      state->work[6], state->work[7]});
   if (!same)
     throw std::runtime_error("this PETSc's TSBDF keeps its state in another layout than "
-                             "PETSc 3.18's: gelx cannot restart the damped flow");
+                             "PETSc 3.18's: gelx cannot restart a BDF run");
   return *state;
 }
 
+bool is_bdf(TS ts)
+{
+  PetscBool bdf;
+  GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(ts), TSBDF, &bdf));
+  return bdf;
+}
+
 } // namespace
+
+void keep_restored_start(TS ts, bool& resuming)
+{
+  if (resuming)
+  {
+    ts->steprestart = PETSC_FALSE;
+    resuming = false;
+  }
+}
+
+void save_bdf_history(TS ts, PathState& state)
+{
+  PetscInt step;
+  PetscReal t, dt;
+  GELX_PETSC(TSGetStepNumber(ts, &step));
+  GELX_PETSC(TSGetTime(ts, &t));
+  GELX_PETSC(TSGetTimeStep(ts, &dt));
+  state.step = step;
+  state.load = t;
+  state.step_size = dt;
+  // Another TS type than bdf: a checkpoint of the state only, which restore_bdf_history
+  // refuses (so that the scenes' checkpoints after every step never stop such a run)
+  state.driver["restartable"] = is_bdf(ts);
+  if (!is_bdf(ts))
+    return;
+  const BdfState& bdf = bdf_state(ts);
+  for (PetscInt i = 0; i <= bdf.n; ++i)
+    state.vectors["bdf_state_" + std::to_string(i)] = copy_of(bdf.work[i]);
+  state.driver.update({{"bdf_order", bdf.k},
+                       {"bdf_states", bdf.n},
+                       {"bdf_times", std::vector<double>(bdf.time, bdf.time + bdf.n + 1)},
+                       {"previous_time", ts->ptime_prev}});
+}
+
+void restore_bdf_history(TS ts, Vec x, const PathState& state)
+{
+  const char* prefix;
+  GELX_PETSC(TSGetOptionsPrefix(ts, &prefix));
+  if (!is_bdf(ts) || !state.driver.value("restartable", false))
+    throw InputError(std::string("-") + (prefix ? prefix : "")
+                     + "ts_type: only bdf runs restart");
+  GELX_PETSC(TSSetSolution(ts, x));
+  GELX_PETSC(TSSetUp(ts));
+  BdfState& bdf = bdf_state(ts);
+  bdf.k = state.driver.at("bdf_order");
+  bdf.n = state.driver.at("bdf_states");
+  const std::vector<double> times = state.driver.at("bdf_times");
+  for (PetscInt i = 0; i <= bdf.n; ++i)
+  {
+    bdf.time[i] = times[i];
+    GELX_PETSC(VecCopy(state.vectors.at("bdf_state_" + std::to_string(i)).get(), bdf.work[i]));
+  }
+  GELX_PETSC(TSSetTime(ts, state.load));
+  GELX_PETSC(TSSetStepNumber(ts, state.step));
+  GELX_PETSC(TSSetTimeStep(ts, state.step_size));
+  ts->ptime_prev = state.driver.at("previous_time");
+}
 
 DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
                                const dolfinx::fem::Form<double>& mass_form,
@@ -367,13 +423,10 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSMonitorSet(_ts, monitor_accepted<DampedDynamics>, this, nullptr));
   GELX_PETSC(TSSetApplicationContext(_ts, this));
   GELX_PETSC(TSSetPostStep(_ts, post_step_check<DampedDynamics>));
-  GELX_PETSC(TSSetPreStep(_ts, gelx::pre_step));
+  GELX_PETSC(TSSetPreStep(_ts, pre_step_hook<DampedDynamics>));
   GELX_PETSC(TSSetFromOptions(_ts));
   refuse_unread_options_of(prefix);
   reject_failed_line_searches(_ts);
-  PetscBool bdf;
-  GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(_ts), TSBDF, &bdf));
-  _restartable = bdf;
   SNES snes;
   GELX_PETSC(TSGetSNES(_ts, &snes));
   KSP ksp;
@@ -453,46 +506,20 @@ void DampedDynamics::check_step_size()
     _too_small_step = step;
 }
 
-void DampedDynamics::pre_step()
-{
-  // A resumed run continues from the state save() wrote: TSBDF must not start again at
-  // order 1 from the current state alone (TSBDF_Restart) but take its history
-  if (_resuming)
-  {
-    _ts->steprestart = PETSC_FALSE;
-    _resuming = false;
-  }
-}
+void DampedDynamics::pre_step() { keep_restored_start(_ts, _resuming); }
 
 void DampedDynamics::save(PathState& state) const
 {
-  PetscInt step;
-  PetscReal t, dt;
-  GELX_PETSC(TSGetStepNumber(_ts, &step));
-  GELX_PETSC(TSGetTime(_ts, &t));
-  GELX_PETSC(TSGetTimeStep(_ts, &dt));
-  state.step = step;
-  state.load = t;
-  state.step_size = dt;
-  // Another TS type than bdf: a checkpoint of the state only, which run() refuses to resume
-  // (so that the scenes' checkpoints after every step never stop such a run)
-  state.driver = {{"restartable", _restartable}};
-  if (!_restartable)
+  save_bdf_history(_ts, state);
+  if (!state.driver["restartable"].get<bool>())
     return;
-  const BdfState& bdf = bdf_state(_ts);
-  for (PetscInt i = 0; i <= bdf.n; ++i)
-    state.vectors["bdf_state_" + std::to_string(i)] = copy_of(bdf.work[i]);
   for (std::size_t i = 0; i < _history.size(); ++i)
     state.vectors["velocity_state_" + std::to_string(i)] = copy_of(_history[i].get());
-  state.driver.update({{"bdf_order", bdf.k},
-                  {"bdf_states", bdf.n},
-                  {"bdf_times", std::vector<double>(bdf.time, bdf.time + bdf.n + 1)},
-                  {"previous_time", _ts->ptime_prev},
-                  {"velocity_times", _history_time},
-                  {"power", _power},
-                  {"dissipated_energy", _summary.dissipated_energy},
-                  {"kinetic_ratio", _summary.kinetic_ratio},
-                  {"rejected_steps", _summary.rejected_steps}});
+  state.driver.update({{"velocity_times", _history_time},
+                       {"power", _power},
+                       {"dissipated_energy", _summary.dissipated_energy},
+                       {"kinetic_ratio", _summary.kinetic_ratio},
+                       {"rejected_steps", _summary.rejected_steps}});
 }
 
 void DampedDynamics::accepted(int step, double t, Vec u)
@@ -583,20 +610,7 @@ DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observe
   _skip_first_monitor = _resuming = false;
   if (resume)
   {
-    if (!_restartable || !resume->driver.value("restartable", false))
-      throw InputError("-" + _prefix + "ts_type: only bdf runs of the damped flow restart");
-    GELX_PETSC(TSSetSolution(_ts, x.get()));
-    GELX_PETSC(TSSetUp(_ts));
-    BdfState& bdf = bdf_state(_ts);
-    bdf.k = resume->driver.at("bdf_order");
-    bdf.n = resume->driver.at("bdf_states");
-    const std::vector<double> times = resume->driver.at("bdf_times");
-    for (PetscInt i = 0; i <= bdf.n; ++i)
-    {
-      bdf.time[i] = times[i];
-      GELX_PETSC(VecCopy(resume->vectors.at("bdf_state_" + std::to_string(i)).get(),
-                         bdf.work[i]));
-    }
+    restore_bdf_history(_ts, x.get(), *resume);
     _history_time = resume->driver.at("velocity_times").get<std::vector<double>>();
     for (std::size_t i = 0; i < _history_time.size(); ++i)
       _history.push_back(copy_of(resume->vectors.at("velocity_state_" + std::to_string(i)).get()));
@@ -604,10 +618,6 @@ DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observe
     _summary.dissipated_energy = resume->driver.at("dissipated_energy");
     _summary.kinetic_ratio = resume->driver.at("kinetic_ratio");
     _summary.rejected_steps = resume->driver.at("rejected_steps");
-    GELX_PETSC(TSSetTime(_ts, resume->load));
-    GELX_PETSC(TSSetStepNumber(_ts, resume->step));
-    GELX_PETSC(TSSetTimeStep(_ts, resume->step_size));
-    _ts->ptime_prev = resume->driver.at("previous_time");
     _skip_first_monitor = _resuming = true;
   }
   else

@@ -73,6 +73,33 @@ PetscErrorCode post_step_check(TS ts)
   Integrator& d = *static_cast<Integrator*>(ctx);
   return guarded_callback(d.callback_error, [&] { d.check_step_size(); });
 }
+/// The TS pre-step hook of an integrator with pre_step() (a resumed run's first step keeps
+/// the integrator's restored state: see keep_restored_start).
+template <class Integrator>
+PetscErrorCode pre_step_hook(TS ts)
+{
+  void* ctx;
+  PetscCall(TSGetApplicationContext(ts, &ctx));
+  Integrator& d = *static_cast<Integrator*>(ctx);
+  return guarded_callback(d.callback_error, [&] { d.pre_step(); });
+}
+/// Before the first step of a resumed TSSolve (`resuming`, then cleared): TS must not start
+/// its method again from the current state alone (TSBDF_Restart, TSAlpha_Restart), which
+/// would take the continued run off the uninterrupted one, but take the state restored.
+void keep_restored_start(TS ts, bool& resuming);
+/// Restart of TSBDF: its step number, time and next step size into `state` (step, load,
+/// step_size), and, when TS is TSBDF, its history (the states and times its next steps
+/// interpolate, its current order) as state.vectors bdf_state_* and state.driver entries,
+/// with driver["restartable"] saying which. Why a hook into PETSc's private state: TSBDF keeps
+/// its history to itself and at the start of every TSSolve starts again at order 1 from the
+/// current state; gelx writes the history back into PETSc 3.18's TSBDF state (its layout
+/// checked at run time against TSBDFGetOrder and the vectors' sizes: a PETSc whose layout
+/// differs is refused in one line). Collective.
+void save_bdf_history(TS ts, PathState& state);
+/// The inverse: TS set up on `x` with the history, time, step number and step size of
+/// `state`; call keep_restored_start in the next TSSolve's first pre-step. Throws InputError
+/// when the state holds no TSBDF history (another -PREFIX_ts_type) or TS is no TSBDF.
+void restore_bdf_history(TS ts, Vec x, const PathState& state);
 /// The options both integrators default to (the user's win): TS `type`, basic adaptivity
 /// with steps up to loading_time / 10, the first step -PREFIXdt (or `first_step`), the end
 /// time loading + hold, failed Newton solves retried with smaller steps (20 in a row at
@@ -215,16 +242,10 @@ struct DynamicsSummary
 /// system with unknowns of its own (the arc-length's load). commit() is called once per
 /// accepted step, not per Newton iteration (a contact active set moves once per step).
 ///
-/// Restart: save() puts TSBDF's history (the states and times its next steps interpolate,
-/// its current order), the step size and the velocity's states into a PathState, which a
-/// Checkpoints stores; run(observers, &state) continues from it, equal to the uninterrupted
-/// run to round-off. Why a hook into PETSc's private state: TSBDF keeps its history to
-/// itself and at the start of every TSSolve starts again at order 1 from the current state
-/// (TSBDF_Restart), which would take a continued run off the uninterrupted one by the
-/// time-integration error. gelx writes the history back into PETSc 3.18's TSBDF state and
-/// skips that start; the layout is checked at run time against TSBDFGetOrder and the
-/// vectors' sizes, and a PETSc whose layout differs is refused in one line. Only with
-/// -PREFIX_ts_type bdf (the default).
+/// Restart: save() puts TSBDF's history (save_bdf_history), the step size and the velocity's
+/// states into a PathState, which a Checkpoints stores; run(observers, &state) continues
+/// from it, equal to the uninterrupted run to round-off. Only with -PREFIX_ts_type bdf (the
+/// default).
 class DampedDynamics
 {
 public:
@@ -300,7 +321,6 @@ private:
   DynamicsSummary _summary;
   double _power = 0; ///< c v^T M v at the last accepted step
   StepCounters _counters;
-  bool _restartable = false; ///< TSBDF, whose state save() knows
   bool _resuming = false, _skip_first_monitor = false;
 };
 

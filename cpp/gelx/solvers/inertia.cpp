@@ -62,14 +62,6 @@ PetscErrorCode form_jacobian(TS, PetscReal t, Vec u, Vec, Vec, PetscReal shift_v
   return guarded_callback(d.callback_error, [&] { d.form_jacobian(t, u, shift_v, shift_a, P); });
 }
 
-PetscErrorCode pre_step(TS ts)
-{
-  void* ctx;
-  PetscCall(TSGetApplicationContext(ts, &ctx));
-  InertialDynamics& d = dynamics_of(ctx);
-  return guarded_callback(d.callback_error, [&] { d.pre_step(); });
-}
-
 PetscErrorCode pre_stage(TS ts, PetscReal)
 {
   void* ctx;
@@ -203,7 +195,7 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSSetI2Jacobian(_ts, _jacobian, _jacobian, gelx::form_jacobian, this));
   GELX_PETSC(TSMonitorSet(_ts, monitor_accepted<InertialDynamics>, this, nullptr));
   GELX_PETSC(TSSetApplicationContext(_ts, this));
-  GELX_PETSC(TSSetPreStep(_ts, gelx::pre_step));
+  GELX_PETSC(TSSetPreStep(_ts, pre_step_hook<InertialDynamics>));
   GELX_PETSC(TSSetPreStage(_ts, gelx::pre_stage));
   GELX_PETSC(TSSetPostStep(_ts, post_step_check<InertialDynamics>));
   GELX_PETSC(TSSetFromOptions(_ts));
@@ -329,13 +321,8 @@ void InertialDynamics::pre_step()
 {
   if (_explicit)
     choose_explicit_step();
-  // A resumed run continues from the state save() wrote: TSALPHA2 must not compute a new
-  // start (TSAlpha_Restart) but take it
-  if (_resuming)
-  {
-    _ts->steprestart = PETSC_FALSE;
-    _resuming = false;
-  }
+  // A resumed run continues from the state save() wrote, not from a new TSALPHA2 start
+  keep_restored_start(_ts, _resuming);
 }
 
 void InertialDynamics::pre_stage()

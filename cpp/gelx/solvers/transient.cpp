@@ -49,6 +49,7 @@ TransientProblem::TransientProblem(MPI_Comm comm, NonlinearProblem& problem,
   GELX_PETSC(TSMonitorSet(_ts, monitor_accepted<TransientProblem>, this, nullptr));
   GELX_PETSC(TSSetApplicationContext(_ts, this));
   GELX_PETSC(TSSetPostStep(_ts, post_step_check<TransientProblem>));
+  GELX_PETSC(TSSetPreStep(_ts, pre_step_hook<TransientProblem>));
   GELX_PETSC(TSSetFromOptions(_ts));
   refuse_unread_options_of(prefix);
   reject_failed_line_searches(_ts);
@@ -97,9 +98,11 @@ void TransientProblem::form_jacobian(double t, Vec w, Vec w_dot, double shift, M
 
 void TransientProblem::accepted(int step, double t, Vec w)
 {
-  if (step == 0)
+  if (_skip_first_monitor)
   {
-    _counters.wall_time = wall_clock(); // TSSolve's first call: the state it starts from
+    // TSSolve's first call: the state it starts from (a resumed run's, recorded already)
+    _skip_first_monitor = false;
+    _counters.wall_time = wall_clock();
     return;
   }
   PetscReal t_previous;
@@ -118,14 +121,26 @@ void TransientProblem::check_step_size()
     _too_small_step = step;
 }
 
-int TransientProblem::run(const std::function<void(const TransientStep&)>& observe)
+void TransientProblem::pre_step() { keep_restored_start(_ts, _resuming); }
+
+void TransientProblem::save(PathState& state) const { save_bdf_history(_ts, state); }
+
+int TransientProblem::run(const std::function<void(const TransientStep&)>& observe,
+                          const PathState* resume)
 {
   _observe = &observe;
   _counters = StepCounters{};
   OwnedVec w(_problem.create_vector());
   GELX_PETSC(VecCopy(_problem.unknowns(), w.get()));
-  GELX_PETSC(TSSetTime(_ts, 0.0));
-  GELX_PETSC(TSSetStepNumber(_ts, 0));
+  _skip_first_monitor = true;
+  _resuming = resume != nullptr;
+  if (resume)
+    restore_bdf_history(_ts, w.get(), *resume);
+  else
+  {
+    GELX_PETSC(TSSetTime(_ts, 0.0));
+    GELX_PETSC(TSSetStepNumber(_ts, 0));
+  }
   callback_error = nullptr;
   _too_small_step = 0;
   // Errors of the callbacks are rethrown below; PETSc must not print its trace for them

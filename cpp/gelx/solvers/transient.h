@@ -37,7 +37,9 @@ struct TransientStep
 /// end_time * 1e-6, steps up to end_time / 10, a direct solve (MUMPS). Why TS and not a
 /// backward-Euler form of one's own: its BDFs are L-stable and adapt the step to the
 /// transient, which spans decades (a diffusion front's sqrt(t) start, then the slow approach to
-/// equilibrium).
+/// equilibrium). Restart: save() puts TSBDF's history into a PathState (save_bdf_history),
+/// which a Checkpoints stores; run(observe, &state) continues from it, equal to the
+/// uninterrupted run to round-off.
 class TransientProblem
 {
 public:
@@ -50,16 +52,22 @@ public:
   TransientProblem(const TransientProblem&) = delete;
   TransientProblem& operator=(const TransientProblem&) = delete;
 
-  /// Run to the end time, calling `observe` after every accepted step with the problem at
-  /// that step's state. Throws ConvergenceError when TS gives up; the problem then holds the
-  /// last accepted state. Returns the number of steps taken.
-  int run(const std::function<void(const TransientStep&)>& observe);
+  /// Run to the end time from the problem's current state at t = 0, or, with `resume`, from
+  /// the state save() wrote (the problem already at its unknowns), calling `observe` after
+  /// every accepted step with the problem at that step's state. Throws ConvergenceError when
+  /// TS gives up; the problem then holds the last accepted state. Returns the number of the
+  /// last step.
+  int run(const std::function<void(const TransientStep&)>& observe,
+          const PathState* resume = nullptr);
+  /// The integrator's state after the last accepted step into `state`. Collective.
+  void save(PathState& state) const;
 
   /// For the C callbacks.
   void form_function(double t, Vec w, Vec w_dot, Vec F);
   void form_jacobian(double t, Vec w, Vec w_dot, double shift, Mat P);
   void accepted(int step, double t, Vec w);
   void check_step_size();
+  void pre_step();
   /// An exception a callback raised, rethrown by run() after TSSolve returns
   std::exception_ptr callback_error;
 
@@ -78,6 +86,7 @@ private:
   Mat _jacobian = nullptr;
   StepCounters _counters;
   const std::function<void(const TransientStep&)>* _observe = nullptr;
+  bool _resuming = false, _skip_first_monitor = false;
 };
 
 } // namespace gelx

@@ -340,16 +340,31 @@ void keep_restored_start(TS ts, bool& resuming)
   }
 }
 
-void save_bdf_history(TS ts, PathState& state)
+void save_ts_position(TS ts, PathState& state)
 {
   PetscInt step;
-  PetscReal t, dt;
+  PetscReal t, t_previous, dt;
   GELX_PETSC(TSGetStepNumber(ts, &step));
   GELX_PETSC(TSGetTime(ts, &t));
+  GELX_PETSC(TSGetPrevTime(ts, &t_previous));
   GELX_PETSC(TSGetTimeStep(ts, &dt));
   state.step = step;
   state.load = t;
   state.step_size = dt;
+  state.driver["previous_time"] = t_previous;
+}
+
+void restore_ts_position(TS ts, const PathState& state)
+{
+  GELX_PETSC(TSSetTime(ts, state.load));
+  GELX_PETSC(TSSetStepNumber(ts, state.step));
+  GELX_PETSC(TSSetTimeStep(ts, state.step_size));
+  ts->ptime_prev = state.driver.at("previous_time");
+}
+
+void save_bdf_history(TS ts, PathState& state)
+{
+  save_ts_position(ts, state);
   // Another TS type than bdf: a checkpoint of the state only, which restore_bdf_history
   // refuses (so that the scenes' checkpoints after every step never stop such a run)
   state.driver["restartable"] = is_bdf(ts);
@@ -360,8 +375,7 @@ void save_bdf_history(TS ts, PathState& state)
     state.vectors["bdf_state_" + std::to_string(i)] = copy_of(bdf.work[i]);
   state.driver.update({{"bdf_order", bdf.k},
                        {"bdf_states", bdf.n},
-                       {"bdf_times", std::vector<double>(bdf.time, bdf.time + bdf.n + 1)},
-                       {"previous_time", ts->ptime_prev}});
+                       {"bdf_times", std::vector<double>(bdf.time, bdf.time + bdf.n + 1)}});
 }
 
 void restore_bdf_history(TS ts, Vec x, const PathState& state)
@@ -382,10 +396,7 @@ void restore_bdf_history(TS ts, Vec x, const PathState& state)
     bdf.time[i] = times[i];
     GELX_PETSC(VecCopy(state.vectors.at("bdf_state_" + std::to_string(i)).get(), bdf.work[i]));
   }
-  GELX_PETSC(TSSetTime(ts, state.load));
-  GELX_PETSC(TSSetStepNumber(ts, state.step));
-  GELX_PETSC(TSSetTimeStep(ts, state.step_size));
-  ts->ptime_prev = state.driver.at("previous_time");
+  restore_ts_position(ts, state);
 }
 
 DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,

@@ -87,6 +87,10 @@ PetscErrorCode pre_step_hook(TS ts)
 /// its method again from the current state alone (TSBDF_Restart, TSAlpha_Restart), which
 /// would take the continued run off the uninterrupted one, but take the state restored.
 void keep_restored_start(TS ts, bool& resuming);
+/// TS's step number, time, next step size and previous time into `state` (step, load,
+/// step_size, driver["previous_time"]), and back: where an integrator's restart begins.
+void save_ts_position(TS ts, PathState& state);
+void restore_ts_position(TS ts, const PathState& state);
 /// Restart of TSBDF: its step number, time and next step size into `state` (step, load,
 /// step_size), and, when TS is TSBDF, its history (the states and times its next steps
 /// interpolate, its current order) as state.vectors bdf_state_* and state.driver entries,

@@ -628,28 +628,19 @@ Vec InertialDynamics::acceleration() const { return step_vectors().acceleration;
 void InertialDynamics::save(PathState& state) const
 {
   const StepVectors alpha = step_vectors();
-  PetscInt step;
-  PetscReal t, t_previous, dt;
-  GELX_PETSC(TSGetStepNumber(_ts, &step));
-  GELX_PETSC(TSGetTime(_ts, &t));
-  GELX_PETSC(TSGetPrevTime(_ts, &t_previous));
-  GELX_PETSC(TSGetTimeStep(_ts, &dt));
-  state.step = step;
-  state.load = t;
-  state.step_size = dt;
+  save_ts_position(_ts, state);
   state.vectors["velocity"] = copy_of(_ts->vec_dot);
   state.vectors["acceleration"] = copy_of(alpha.acceleration);
   state.vectors["previous_unknowns"] = copy_of(alpha.previous_unknowns);
   state.vectors["previous_velocity"] = copy_of(alpha.previous_velocity);
   if (_explicit)
     state.vectors["lumped_mass"] = copy_of(_lumped_mass.get()); // mass scaling included
-  state.driver = {{"previous_time", t_previous},
-                  {"strain_energy0", _strain_energy0},
-                  {"kinetic_energy0", _kinetic_energy0},
-                  {"dissipated_energy", _summary.dissipated_energy},
-                  {"external_work", _summary.external_work},
-                  {"kinetic_ratio", _summary.kinetic_ratio},
-                  {"rejected_steps", _summary.rejected_steps}};
+  state.driver.update({{"strain_energy0", _strain_energy0},
+                       {"kinetic_energy0", _kinetic_energy0},
+                       {"dissipated_energy", _summary.dissipated_energy},
+                       {"external_work", _summary.external_work},
+                       {"kinetic_ratio", _summary.kinetic_ratio},
+                       {"rejected_steps", _summary.rejected_steps}});
   if (_explicit)
     state.driver.update({{"stable_step", _stable_step},
                          {"smallest_stable_step", _smallest_stable_step},
@@ -694,10 +685,7 @@ DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& obser
       _smallest_stable_step = resume->driver.at("smallest_stable_step");
       _steps_since_estimate = resume->driver.at("steps_since_estimate");
     }
-    GELX_PETSC(TSSetTime(_ts, resume->load));
-    GELX_PETSC(TSSetStepNumber(_ts, resume->step));
-    GELX_PETSC(TSSetTimeStep(_ts, resume->step_size));
-    _ts->ptime_prev = resume->driver.at("previous_time");
+    restore_ts_position(_ts, *resume);
     _strain_energy0 = resume->driver.at("strain_energy0");
     _kinetic_energy0 = resume->driver.at("kinetic_energy0");
     _summary.dissipated_energy = resume->driver.at("dissipated_energy");

@@ -24,7 +24,8 @@ PETSc TS asks for (shift its constant). The conservation row is scaled by -kT_nu
 coupling blocks are each other's transposes at shift 1.
 
 Exports per element: residual, tangent, volume (int J dX: the solvent taken up, V - V0), the
-Cauchy stress at the cell midpoints and J - phi0 at the quadrature points (admissibility);
+Cauchy stress and J (the local swelling ratio) at the cell midpoints and J - phi0 at the
+quadrature points (admissibility);
 coefficients w_*, w_dot_*.
 """
 import ufl
@@ -56,7 +57,7 @@ def gel(w, w_dot, degree):
                 - kT_nu * (J_dot * q - ufl.inner(flux, ufl.grad(q))) * dx)
     dw = ufl.TrialFunction(W)
     tangent = ufl.derivative(residual, w, dw) + shift * ufl.derivative(residual, w_dot, dw)
-    return (residual, tangent, J * dx, materials.cauchy_stress(psi, F), J - phi0,
+    return (residual, tangent, J * dx, materials.cauchy_stress(psi, F), J, J - phi0,
             materials.quadrature_points(cell, quadrature))
 
 
@@ -69,10 +70,12 @@ def space(degree):
 W_q2q1, W_q1q1 = space(2), space(1)
 w_q2q1, w_dot_q2q1 = ufl.Coefficient(W_q2q1), ufl.Coefficient(W_q2q1)  # (u, mu), its rate
 w_q1q1, w_dot_q1q1 = ufl.Coefficient(W_q1q1), ufl.Coefficient(W_q1q1)
-residual_q2q1, tangent_q2q1, volume_q2q1, stress_q2q1, margin_q2q1, _points_q2q1 = gel(
-    w_q2q1, w_dot_q2q1, 2)
-residual_q1q1, tangent_q1q1, volume_q1q1, stress_q1q1, margin_q1q1, _points_q1q1 = gel(
-    w_q1q1, w_dot_q1q1, 1)
+(residual_q2q1, tangent_q2q1, volume_q2q1, stress_q2q1, swelling_ratio_q2q1, margin_q2q1,
+ _points_q2q1) = gel(w_q2q1, w_dot_q2q1, 2)
+(residual_q1q1, tangent_q1q1, volume_q1q1, stress_q1q1, swelling_ratio_q1q1, margin_q1q1,
+ _points_q1q1) = gel(w_q1q1, w_dot_q1q1, 1)
 forms = [residual_q2q1, tangent_q2q1, volume_q2q1, residual_q1q1, tangent_q1q1, volume_q1q1]
 expressions = [(stress_q2q1, materials.centroid(cell)), (margin_q2q1, _points_q2q1),
-               (stress_q1q1, materials.centroid(cell)), (margin_q1q1, _points_q1q1)]
+               (swelling_ratio_q2q1, materials.centroid(cell)),
+               (stress_q1q1, materials.centroid(cell)), (margin_q1q1, _points_q1q1),
+               (swelling_ratio_q1q1, materials.centroid(cell))]

@@ -27,9 +27,11 @@
 
 #include "swelling.h"
 
-#include <cmath>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <string>
 #include <dolfinx/fem/DirichletBC.h>
@@ -42,6 +44,7 @@
 #include <gelx/systems/forms.h>
 #include <gelx/systems/mixed.h>
 #include <gelx/systems/problem.h>
+#include <gelx/common/collectives.h>
 #include <gelx/common/petsc_utils.h>
 #include <gelx/io/progress.h>
 #include <theory/flory_rehner.h>
@@ -56,14 +59,14 @@ struct Kernels
   const char *w, *w_dot;
   ufcx_function_space* (*space)(const char*);
   ufcx_form *residual, *tangent, *volume;
-  ufcx_expression *stress, *margin;
+  ufcx_expression *stress, *swelling_ratio, *margin;
 };
 #define SWELLING_KERNELS(element)                                                              \
   {#element,                                                                                   \
    {"w_" #element, "w_dot_" #element, functionspace_form_swelling_residual_##element,          \
     form_swelling_residual_##element, form_swelling_tangent_##element,                         \
     form_swelling_volume_##element, expression_swelling_stress_##element,                      \
-    expression_swelling_margin_##element}}
+    expression_swelling_swelling_ratio_##element, expression_swelling_margin_##element}}
 const std::map<std::string, Kernels> kernels = {SWELLING_KERNELS(q2q1), SWELLING_KERNELS(q1q1)};
 #undef SWELLING_KERNELS
 
@@ -162,23 +165,31 @@ int main(int argc, char* argv[])
     // ((J - phi0) C^-1 falls, and mu's slope dmu/dJ with it), so it swells in a layer of
     // thickness sqrt(D_skin t), a few micrometres in the first seconds
     const std::array<double, 3> size{p.W, p.W, p.H};
-    for (int axis = free ? 0 : 2; axis < 3; ++axis)
-      for (std::size_t i = axis; i < geo.mesh->geometry().x().size(); i += 3)
-      {
-        double& x = geo.mesh->geometry().x()[i];
-        x = size[axis] * (1 - std::pow(1 - x / size[axis], p.grading));
-      }
-    // The ellipsoid: the box's point, at q in the unit cube's coordinates, moved along q's ray
-    // by a factor blending from 1 at the centre to 1 / |q| on the faces max q_k = 1, which
-    // land on the surface |q| = 1
+    const auto graded = [&](double s) { return 1 - std::pow(1 - s, p.grading); };
+    if (!ellipsoid)
+      for (int axis = free ? 0 : 2; axis < 3; ++axis)
+        for (std::size_t i = axis; i < geo.mesh->geometry().x().size(); i += 3)
+        {
+          double& x = geo.mesh->geometry().x()[i];
+          x = size[axis] * graded(x / size[axis]);
+        }
+    // The ellipsoid: the box's point, at q in the unit cube's coordinates, moved along q's ray,
+    // first so that its shell max q_k = m becomes the graded shell 1 - (1 - m)^grading (cells
+    // in layers towards the surface, as the box's towards its faces), then by a factor blending
+    // from 1 at the centre to 1 / |q| on the faces max q_k = 1, which land on the surface
+    // |q| = 1
     if (ellipsoid)
       for (std::size_t i = 0; i < geo.mesh->geometry().x().size(); i += 3)
       {
         double* x = &geo.mesh->geometry().x()[i];
         const std::array<double, 3> q{x[0] / size[0], x[1] / size[1], x[2] / size[2]};
-        const double max = std::max({q[0], q[1], q[2]});
+        const double shell = std::max({q[0], q[1], q[2]});
         const double length = std::hypot(q[0], q[1], q[2]);
-        const double factor = length > 0 ? 1 + max * (max / length - 1) : 1;
+        if (shell == 0)
+          continue;
+        const double to_graded = graded(shell) / shell;
+        const double max = shell * to_graded;
+        const double factor = to_graded * (1 + max * (max / (length * to_graded) - 1));
         for (int k = 0; k < 3; ++k)
           x[k] *= factor;
       }
@@ -252,10 +263,40 @@ int main(int argc, char* argv[])
     fields.add("displacement", u);
     fields.add("chemical_potential", mu);
     fields.add("cauchy_stress", forms.expression(k.stress));
+    fields.add("swelling_ratio", forms.expression(k.swelling_ratio));
     const auto volume = forms.form(k.volume);
     const double V0 = gelx::assemble_global_scalar(*volume);
     const auto thickness = [&]
     { return p.H + gelx::component_range(*u, *geo.facet_tags, surface, 2).second; };
+    // The swelling front: the reference depth below the surface z = H, on the line x = y = 0,
+    // at which mu is half-way from mu0 to the surface's mu (mu's nodes on the line, gathered;
+    // H once the front has crossed the piece)
+    std::vector<std::int32_t> line_nodes;
+    const std::vector<double> mu_nodes = mu->function_space()->tabulate_dof_coordinates(false);
+    for (std::int32_t i = 0; i < mu->function_space()->dofmap()->index_map->size_local(); ++i)
+      if (std::abs(mu_nodes[3 * i]) < 1e-9 * p.W && std::abs(mu_nodes[3 * i + 1]) < 1e-9 * p.W)
+        line_nodes.push_back(i);
+    const auto front_depth = [&](double t)
+    {
+      std::vector<double> local; // z, mu of each node
+      for (std::int32_t i : line_nodes)
+        local.insert(local.end(), {mu_nodes[3 * i + 2], mu->x()->array()[i]});
+      const std::vector<double> all = gelx::all_gather(run.comm(), local);
+      std::vector<std::array<double, 2>> line;
+      for (std::size_t k = 0; k < all.size(); k += 2)
+        line.push_back({all[k], all[k + 1]});
+      std::sort(line.begin(), line.end(), std::greater<>()); // from the surface down
+      const double half = mu0 + 0.5 * gelx::smooth_step(t, p.ramp_time) * (p.mu - mu0);
+      for (std::size_t k = 1; k < line.size(); ++k)
+        if (line[k][1] < half)
+        {
+          const auto& [z_above, mu_above] = line[k - 1];
+          const auto& [z_below, mu_below] = line[k];
+          const double z = z_above + (half - mu_above) / (mu_below - mu_above) * (z_below - z_above);
+          return p.H - z;
+        }
+      return p.H;
+    };
     run.summary = {{"num_dofs", W->dofmap()->index_map->size_global()},
                    {"mu0", mu0},
                    {"phi0", phi0}};
@@ -289,7 +330,8 @@ int main(int argc, char* argv[])
           newton_iterations += s.step.newton.iterations;
           const nlohmann::json quantities
               = {{"thickness", thickness()},
-                 {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0}};
+                 {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0},
+                 {"front_depth", front_depth(t)}};
           nlohmann::json row = {{"step", s.step.step},
                                 {"time", t},
                                 {"dt", s.step.step_size},

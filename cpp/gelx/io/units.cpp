@@ -69,7 +69,7 @@ const std::map<std::string, Dimension>& dimensions()
       {"theory_uniaxial_alpha_perp", D::none}, {"max_shear_macro", D::none},
       {"min_J_minus_phi0", D::none}, {"chemical_potential", D::none}, {"mu0", D::none},
       {"phi0", D::none},
-      {"thickness", D::length}, {"phi_i", D::none}, {"phi_f", D::none},
+      {"thickness", D::length}, {"front_depth", D::length}, {"phi_i", D::none}, {"phi_f", D::none},
       {"slenderness", D::none}, {"area_ratio", D::none},
       // Fits of the pyramid's contact width l_c/L against d/H and sqrt(f)
       {"slope_lc_vs_d", D::none}, {"slope_lc_vs_d_extrapolated", D::none},

@@ -2,6 +2,7 @@
 
 #include <gelx/common/petsc_utils.h>
 #include <gelx/io/parameters.h>
+#include <gelx/systems/mixed.h>
 
 #include <algorithm>
 #include <petsc/private/tsimpl.h>
@@ -54,6 +55,11 @@ TransientProblem::TransientProblem(MPI_Comm comm, NonlinearProblem& problem,
   refuse_unread_options_of(prefix);
   reject_failed_line_searches(_ts);
   GELX_PETSC(TSSetErrorIfStepFails(_ts, PETSC_FALSE));
+  SNES snes;
+  GELX_PETSC(TSGetSNES(_ts, &snes));
+  KSP ksp;
+  GELX_PETSC(SNESGetKSP(snes, &ksp));
+  define_fields_if_split(ksp, problem);
 }
 
 TransientProblem::~TransientProblem()

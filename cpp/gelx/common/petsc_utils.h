@@ -38,6 +38,22 @@ PetscErrorCode guarded_callback(std::exception_ptr& error, Body&& body)
   }
 }
 
+/// Run a PETSc solve (`solve()` returns its error code: TSSolve, SNESSolve) whose callbacks are
+/// guarded_callback bodies keeping their exception in `error` (cleared first): PETSc's error
+/// handler is quiet meanwhile, so that an error is one line, not PETSc's trace of every frame
+/// it passed through; then the callback's exception is rethrown, or PETSc's error thrown.
+template <typename Solve>
+void solve_guarded(std::exception_ptr& error, Solve&& solve)
+{
+  error = nullptr;
+  GELX_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  const PetscErrorCode ierr = solve();
+  GELX_PETSC(PetscPopErrorHandler());
+  if (error)
+    std::rethrow_exception(error);
+  GELX_PETSC(ierr);
+}
+
 /// Set option `-<prefix><name>` to `value` unless it is already set (on the command line,
 /// in PETSC_OPTIONS or an options file), so that scene defaults never override the user.
 void set_default_option(const std::string& prefix, const std::string& name,

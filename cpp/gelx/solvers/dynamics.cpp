@@ -636,16 +636,9 @@ DynamicsSummary DampedDynamics::run(const std::vector<DynamicsObserver>& observe
     GELX_PETSC(TSSetTime(_ts, 0.0));
     GELX_PETSC(TSSetStepNumber(_ts, 0));
   }
-  callback_error = nullptr;
   _too_small_step = 0;
-  // Errors of the callbacks are rethrown below; PETSc must not print its trace for them
-  GELX_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
-  const PetscErrorCode ierr = TSSolve(_ts, x.get());
-  GELX_PETSC(PetscPopErrorHandler());
+  solve_guarded(callback_error, [&] { return TSSolve(_ts, x.get()); });
   _observers = nullptr;
-  if (callback_error)
-    std::rethrow_exception(callback_error);
-  GELX_PETSC(ierr);
   // The last accepted state (TS leaves x there; a failed step is rolled back)
   const double t = _history_time.empty() ? 0.0 : _history_time.front();
   set_time(t);

@@ -661,7 +661,6 @@ DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& obser
   _summary.external_work = _has_reactions ? 0.0 : NAN;
   _counters = StepCounters{};
   _have_previous_reaction = false;
-  callback_error = nullptr;
   _too_small_step = 0;
 
   OwnedVec u = copy_of(_system.unknowns());
@@ -712,15 +711,10 @@ DynamicsSummary InertialDynamics::run(const std::vector<DynamicsObserver>& obser
   }
   _skip_first_monitor = true;
   // Errors of the callbacks (an explicit run that blows up, a step budget spent in a monitor)
-  // are rethrown below: one line, not PETSc's trace of every frame they passed through
-  GELX_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
-  const PetscErrorCode ierr = TSSolve(_ts, u.get());
-  GELX_PETSC(PetscPopErrorHandler());
+  // are rethrown as one line
+  solve_guarded(callback_error, [&] { return TSSolve(_ts, u.get()); });
   _observers = nullptr;
   _resuming = false;
-  if (callback_error)
-    std::rethrow_exception(callback_error);
-  GELX_PETSC(ierr);
   // The last accepted state (a failed step is rolled back)
   PetscReal t;
   GELX_PETSC(TSGetTime(_ts, &t));

@@ -349,14 +349,7 @@ NewtonReport NewtonSolver::correct(NonlinearSystem& system, Vec last_point)
 NewtonReport NewtonSolver::run_snes(NonlinearSystem& system)
 {
   Context& context = context_of(_snes);
-  context.error = nullptr;
-  // Errors of the callbacks are rethrown below; PETSc must not print its trace for them
-  GELX_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
-  const PetscErrorCode ierr = SNESSolve(_snes, nullptr, _x);
-  GELX_PETSC(PetscPopErrorHandler());
-  if (context.error)
-    std::rethrow_exception(context.error);
-  GELX_PETSC(ierr);
+  solve_guarded(context.error, [&] { return SNESSolve(_snes, nullptr, _x); });
   system.set_state(_x);
 
   NewtonReport& report = _progress.report;

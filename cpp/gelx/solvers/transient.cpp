@@ -147,16 +147,9 @@ int TransientProblem::run(const std::function<void(const TransientStep&)>& obser
     GELX_PETSC(TSSetTime(_ts, 0.0));
     GELX_PETSC(TSSetStepNumber(_ts, 0));
   }
-  callback_error = nullptr;
   _too_small_step = 0;
-  // Errors of the callbacks are rethrown below; PETSc must not print its trace for them
-  GELX_PETSC(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
-  const PetscErrorCode ierr = TSSolve(_ts, w.get());
-  GELX_PETSC(PetscPopErrorHandler());
+  solve_guarded(callback_error, [&] { return TSSolve(_ts, w.get()); });
   _observe = nullptr;
-  if (callback_error)
-    std::rethrow_exception(callback_error);
-  GELX_PETSC(ierr);
   PetscReal t;
   PetscInt steps;
   GELX_PETSC(TSGetTime(_ts, &t));

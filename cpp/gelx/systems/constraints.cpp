@@ -163,7 +163,7 @@ double MultipointConstraint::macro_force(int k) const
   require_finalized("macro_force");
   Vec f = _problem.create_vector(), reduced = create_vector();
   _problem.internal_forces(f);
-  GELX_PETSC(MatMultTranspose(_P, f, reduced));
+  restrict_vector(f, reduced);
   double value = 0;
   if (dolfinx::MPI::rank(_comm) == 0)
     GELX_PETSC(VecGetValues(
@@ -644,6 +644,18 @@ Mat MultipointConstraint::restrict_operator(Mat A) const
   Mat reduced;
   GELX_PETSC(MatPtAP(A, _P, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &reduced));
   return reduced;
+}
+
+void MultipointConstraint::restrict_vector(Vec f, Vec r) const
+{
+  require_finalized("restrict_vector");
+  GELX_PETSC(MatMultTranspose(_P, f, r));
+}
+
+void MultipointConstraint::prolong_vector(Vec x, Vec u) const
+{
+  require_finalized("prolong_vector");
+  GELX_PETSC(MatMult(_P, x, u));
 }
 
 std::vector<PetscInt> MultipointConstraint::prescribed_rows() const

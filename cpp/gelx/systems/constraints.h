@@ -162,6 +162,9 @@ public:
   bool admissible() const override { return _problem.admissible(); }
   /// P^T A P (PETSc MatPtAP).
   Mat restrict_operator(Mat A) const override;
+  /// P^T f and P x.
+  void restrict_vector(Vec f, Vec r) const override;
+  void prolong_vector(Vec x, Vec u) const override;
   /// The Dirichlet masters and the prescribed macro unknowns.
   std::vector<PetscInt> prescribed_rows() const override;
   NonlinearProblem& problem() override { return _problem; }

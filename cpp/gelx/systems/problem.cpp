@@ -16,22 +16,43 @@
 namespace gelx
 {
 
-Mat NonlinearSystem::restrict_operator(Mat A) const
+namespace
 {
-  // The unknowns must be the problem's dofs, in order
-  const auto& of_problem = unknown_of_problem_dof();
+/// Throws unless the system's unknowns are its problem's dofs, in order: then a problem's
+/// operator or vector is one of the system as it is.
+void require_problem_layout(const NonlinearSystem& system)
+{
+  const auto& of_problem = system.unknown_of_problem_dof();
   const bool identity = std::all_of(of_problem.begin(), of_problem.end(),
                                     [i = PetscInt(0)](PetscInt k) mutable { return k == i++; });
   PetscInt n_local;
-  Vec x = create_vector();
+  Vec x = system.create_vector();
   GELX_PETSC(VecGetLocalSize(x, &n_local));
   GELX_PETSC(VecDestroy(&x));
   if (!identity || PetscInt(of_problem.size()) != n_local)
     throw std::invalid_argument("this system's unknowns are not its problem's dofs (a bordered "
-                                "system): a problem's operator has no meaning on them");
+                                "system): a problem's operator or vector has no meaning on them");
+}
+} // namespace
+
+Mat NonlinearSystem::restrict_operator(Mat A) const
+{
+  require_problem_layout(*this);
   Mat copy;
   GELX_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &copy));
   return copy;
+}
+
+void NonlinearSystem::restrict_vector(Vec f, Vec r) const
+{
+  require_problem_layout(*this);
+  GELX_PETSC(VecCopy(f, r));
+}
+
+void NonlinearSystem::prolong_vector(Vec x, Vec u) const
+{
+  require_problem_layout(*this);
+  GELX_PETSC(VecCopy(x, u));
 }
 
 NonlinearProblem::NonlinearProblem(std::shared_ptr<dolfinx::fem::Function<double>> u,
@@ -133,7 +154,7 @@ Mat NonlinearProblem::create_matrix() const
   return A;
 }
 
-void NonlinearProblem::assemble_local(Vec f) const
+void assemble_local_vector(const dolfinx::fem::Form<double>& L, Vec f)
 {
   Vec f_local;
   GELX_PETSC(VecGhostGetLocalForm(f, &f_local));
@@ -142,17 +163,19 @@ void NonlinearProblem::assemble_local(Vec f) const
   GELX_PETSC(VecGetSize(f_local, &n));
   PetscScalar* array = nullptr;
   GELX_PETSC(VecGetArray(f_local, &array));
-  dolfinx::fem::assemble_vector(std::span<double>(array, n), *_R);
+  dolfinx::fem::assemble_vector(std::span<double>(array, n), L);
   GELX_PETSC(VecRestoreArray(f_local, &array));
   GELX_PETSC(VecGhostRestoreLocalForm(f, &f_local));
 }
 
-void NonlinearProblem::internal_forces(Vec f) const
+void assemble_global_vector(const dolfinx::fem::Form<double>& L, Vec f)
 {
-  assemble_local(f);
+  assemble_local_vector(L, f);
   GELX_PETSC(VecGhostUpdateBegin(f, ADD_VALUES, SCATTER_REVERSE));
   GELX_PETSC(VecGhostUpdateEnd(f, ADD_VALUES, SCATTER_REVERSE));
 }
+
+void NonlinearProblem::internal_forces(Vec f) const { assemble_global_vector(*_R, f); }
 
 double NonlinearProblem::static_residual()
 {
@@ -172,7 +195,7 @@ void NonlinearProblem::residual(Vec r)
     dolfinx::fem::petsc::set_bc(_x, _bcs, nullptr, 1.0); // u_D = g on the iterate
     unknowns_changed();
   }
-  assemble_local(r);
+  assemble_local_vector(*_R, r);
   dolfinx::fem::petsc::apply_lifting(r, {_J}, {_bcs}, {_x}, -1.0);
   GELX_PETSC(VecGhostUpdateBegin(r, ADD_VALUES, SCATTER_REVERSE));
   GELX_PETSC(VecGhostUpdateEnd(r, ADD_VALUES, SCATTER_REVERSE));

@@ -91,8 +91,6 @@ private:
   BCs _bcs;
   std::shared_ptr<const dolfinx::fem::Expression<double>> _admissibility;
   bool _lifting; ///< -dirichlet_lifting (see the class comment)
-  /// Assemble R(u) into the owned and ghost entries of f, without sending ghosts to owners.
-  void assemble_local(Vec f) const;
   Vec _x = nullptr; // PETSc view of _u's coefficients (shares memory, with ghosts)
   std::vector<PetscInt> _identity; // unknown_of_problem_dof()
 };
@@ -111,6 +109,11 @@ struct Resultant
 };
 /// The value of a functional (a rank-0 form) summed over all ranks. Collective.
 double assemble_global_scalar(const dolfinx::fem::Form<double>& M);
+/// A linear form's vector: assemble_local_vector into the owned and ghost entries of f (a
+/// ghosted vector of the form's space), each rank its own cells; assemble_global_vector then
+/// adds the ghost entries to their owners. Collective (the global one).
+void assemble_local_vector(const dolfinx::fem::Form<double>& L, Vec f);
+void assemble_global_vector(const dolfinx::fem::Form<double>& L, Vec f);
 
 Resultant boundary_resultant(const NonlinearProblem& problem,
                              const dolfinx::mesh::MeshTags<std::int32_t>& facet_tags, int tag);

@@ -100,6 +100,15 @@ public:
   /// space (MultipointConstraint). Layouts with unknowns of their own (the arc-length
   /// bordering) have no such operator and throw. Collective.
   virtual Mat restrict_operator(Mat A) const;
+  /// The same for vectors. restrict_vector: a linear form f on the problem's dofs (forces,
+  /// the derivative of an objective) as one on this system's unknowns, r = P^T f (a copy where
+  /// the unknowns are the problem's dofs). prolong_vector: a vector x of this system's
+  /// unknowns (a direction, an adjoint solution) as one on the problem's dofs, u = P x, without
+  /// the constant g of the constraints. Layouts with unknowns of their own throw, as for
+  /// restrict_operator. f and u are in the layout of problem().create_vector(), r and x in that
+  /// of create_vector(). Collective.
+  virtual void restrict_vector(Vec f, Vec r) const;
+  virtual void prolong_vector(Vec x, Vec u) const;
 
   /// The base problem: its mesh, displacement and forms (for outputs and for decorators).
   virtual NonlinearProblem& problem() = 0;
@@ -131,6 +140,8 @@ public:
   void configure(SNES snes) const override { _inner.configure(snes); }
   void set_predicting(bool predicting) override { _inner.set_predicting(predicting); }
   Mat restrict_operator(Mat A) const override { return _inner.restrict_operator(A); }
+  void restrict_vector(Vec f, Vec r) const override { _inner.restrict_vector(f, r); }
+  void prolong_vector(Vec x, Vec u) const override { _inner.prolong_vector(x, u); }
   NonlinearProblem& problem() override { return _inner.problem(); }
   const std::vector<PetscInt>& unknown_of_problem_dof() const override
   {

@@ -1,0 +1,210 @@
+#include <gelx/solvers/design.h>
+
+#include <gelx/common/petsc_utils.h>
+#include <gelx/solvers/load_stepping.h>
+
+#include <dolfinx/common/MPI.h>
+#include <dolfinx/la/petsc.h>
+
+namespace gelx
+{
+
+namespace
+{
+PetscErrorCode objective_and_gradient(Tao, Vec p, PetscReal* J, Vec gradient, void* context)
+{
+  auto& optimizer = *static_cast<DesignOptimizer*>(context);
+  return guarded_callback(optimizer.callback_error,
+                          [&] { *J = optimizer.evaluate(p, gradient); });
+}
+
+PetscErrorCode monitor(Tao, void* context)
+{
+  auto& optimizer = *static_cast<DesignOptimizer*>(context);
+  return guarded_callback(optimizer.callback_error, [&] { optimizer.iterate_accepted(); });
+}
+
+/// All entries of a vector whose entries rank 0 owns, on every rank
+std::vector<double> on_every_rank(Vec v, MPI_Comm comm)
+{
+  PetscInt n, local;
+  GELX_PETSC(VecGetSize(v, &n));
+  GELX_PETSC(VecGetLocalSize(v, &local));
+  std::vector<double> values(n);
+  const PetscScalar* array;
+  GELX_PETSC(VecGetArrayRead(v, &array));
+  std::copy_n(array, local, values.begin());
+  GELX_PETSC(VecRestoreArrayRead(v, &array));
+  MPI_Bcast(values.data(), n, MPI_DOUBLE, 0, comm);
+  return values;
+}
+} // namespace
+
+DesignOptimizer::DesignOptimizer(NonlinearSystem& system, NewtonSolver& newton,
+                                 AdjointGradient& adjoint,
+                                 std::shared_ptr<dolfinx::fem::Function<double>> design,
+                                 int num_parameters,
+                                 const std::function<int(const double* X)>& parameter_of,
+                                 const std::string& prefix)
+    : _system(system), _newton(newton), _adjoint(adjoint), _design(std::move(design)),
+      _prefix(prefix)
+{
+  const MPI_Comm comm = _design->function_space()->mesh()->comm();
+  const bool root = dolfinx::MPI::rank(comm) == 0;
+  const auto& map = *_design->function_space()->dofmap()->index_map;
+  const std::int32_t owned = map.size_local();
+  const std::int64_t first = map.local_range()[0];
+
+  // T: a 1 where parameter k sets design dof i
+  GELX_PETSC(MatCreateAIJ(comm, owned, root ? num_parameters : 0, PETSC_DETERMINE,
+                          num_parameters, 1, nullptr, 1, nullptr, &_T));
+  _design_vec = dolfinx::la::petsc::create_vector_wrap(*_design->x());
+  GELX_PETSC(VecDuplicate(_design_vec, &_fixed));
+  GELX_PETSC(VecCopy(_design_vec, _fixed));
+  const std::vector<double> X = _design->function_space()->tabulate_dof_coordinates(false);
+  PetscScalar* fixed;
+  GELX_PETSC(VecGetArray(_fixed, &fixed));
+  for (std::int32_t i = 0; i < owned; ++i)
+  {
+    const int k = parameter_of(&X[3 * i]);
+    if (k < 0)
+      continue;
+    if (k >= num_parameters)
+      throw std::invalid_argument("DesignOptimizer: parameter " + std::to_string(k)
+                                  + " of a cell is not below the number of parameters, "
+                                  + std::to_string(num_parameters));
+    GELX_PETSC(MatSetValue(_T, first + i, k, 1.0, INSERT_VALUES));
+    fixed[i] = 0;
+  }
+  GELX_PETSC(VecRestoreArray(_fixed, &fixed));
+  GELX_PETSC(MatAssemblyBegin(_T, MAT_FINAL_ASSEMBLY));
+  GELX_PETSC(MatAssemblyEnd(_T, MAT_FINAL_ASSEMBLY));
+
+  // BLMVM's memory: TAO's 5 updates made the twin test (tests/design_twin.cpp, 10 parameters)
+  // crawl, 200 iterations to J/J0 = 5e-9; 10, 20 and 40 took 111, 72 and 57 iterations to
+  // |g| < 1e-8. Four per parameter, within [5, 100] (100 vectors of a per-cell design are
+  // still small beside one factorisation).
+  set_default_options(prefix, {{"tao_type", "blmvm"},
+                               {"tao_max_it", "200"},
+                               {"tao_blmvm_mat_lmvm_hist_size",
+                                std::to_string(std::clamp(4 * num_parameters, 5, 100))}});
+  GELX_PETSC(TaoCreate(comm, &_tao));
+  GELX_PETSC(TaoSetOptionsPrefix(_tao, prefix.c_str()));
+  GELX_PETSC(TaoSetObjectiveAndGradient(_tao, nullptr, objective_and_gradient, this));
+  GELX_PETSC(TaoSetMonitor(_tao, monitor, this, nullptr));
+  GELX_PETSC(MatCreateVecs(_T, &_lower, nullptr));
+  GELX_PETSC(VecDuplicate(_lower, &_upper));
+  set_bounds(PETSC_NINFINITY, PETSC_INFINITY);
+}
+
+DesignOptimizer::~DesignOptimizer()
+{
+  TaoDestroy(&_tao);
+  MatDestroy(&_T);
+  for (Vec* v : {&_fixed, &_design_vec, &_lower, &_upper})
+    VecDestroy(v);
+}
+
+void DesignOptimizer::set_bounds(double lower, double upper)
+{
+  GELX_PETSC(VecSet(_lower, lower));
+  GELX_PETSC(VecSet(_upper, upper));
+}
+
+void DesignOptimizer::set_design(Vec p)
+{
+  GELX_PETSC(MatMultAdd(_T, p, _fixed, _design_vec));
+  _design->x()->scatter_fwd();
+}
+
+void DesignOptimizer::solve_forward()
+{
+  NewtonReport report = _newton.solve(_system);
+  ++_counts.forward_solves;
+  _counts.newton_iterations += report.iterations;
+  if (report.converged)
+    return;
+
+  // Too large a change of the design for one Newton solve: load steps from the last design,
+  // s(t) = s_last + t (s_new - s_last), from the last equilibrium
+  const OwnedVec target = copy_of(_design_vec);
+  _system.set_state(_last_state.get());
+  LoadStepper(_system, _newton, {},
+              [&](double t)
+              {
+                GELX_PETSC(VecAXPBYPCZ(_design_vec, 1 - t, t, 0.0, _last_design.get(),
+                                       target.get()));
+                _design->x()->scatter_fwd();
+              })
+      .run(
+          [&](const StepRecord& step, PathState&)
+          {
+            ++_counts.forward_solves;
+            _counts.newton_iterations += step.newton.iterations;
+          });
+}
+
+double DesignOptimizer::evaluate(Vec p, Vec gradient)
+{
+  set_design(p);
+  solve_forward();
+  GELX_PETSC(VecCopy(_system.unknowns(), _last_state.get()));
+  GELX_PETSC(VecCopy(_design_vec, _last_design.get()));
+  const OwnedVec dJ_ds(_adjoint.create_design_vector());
+  _adjoint.gradient(dJ_ds.get());
+  ++_counts.adjoint_solves;
+  GELX_PETSC(MatMultTranspose(_T, dJ_ds.get(), gradient));
+  return _adjoint.value();
+}
+
+void DesignOptimizer::iterate_accepted()
+{
+  PetscInt iteration;
+  PetscReal J, gradient_norm;
+  TaoConvergedReason reason;
+  GELX_PETSC(TaoGetSolutionStatus(_tao, &iteration, &J, &gradient_norm, nullptr, nullptr,
+                                  &reason));
+  Vec p;
+  GELX_PETSC(TaoGetSolution(_tao, &p));
+  DesignIterate iterate = _counts;
+  iterate.iteration = iteration;
+  iterate.objective = J;
+  iterate.gradient_norm = gradient_norm;
+  iterate.parameters = on_every_rank(p, _design->function_space()->mesh()->comm());
+  iterate.wall_time = MPI_Wtime() - _start_time;
+  if (_observe && *_observe)
+    (*_observe)(iterate);
+}
+
+int DesignOptimizer::minimise(std::vector<double>& parameters,
+                              const std::function<void(const DesignIterate&)>& observe)
+{
+  _observe = &observe;
+  _start_time = MPI_Wtime();
+  _last_state = copy_of(_system.unknowns());
+  _last_design = copy_of(_design_vec);
+  Vec p;
+  GELX_PETSC(MatCreateVecs(_T, &p, nullptr));
+  PetscInt first, last;
+  GELX_PETSC(VecGetOwnershipRange(p, &first, &last));
+  for (PetscInt k = first; k < last; ++k)
+    GELX_PETSC(VecSetValue(p, k, parameters.at(k), INSERT_VALUES));
+  GELX_PETSC(VecAssemblyBegin(p));
+  GELX_PETSC(VecAssemblyEnd(p));
+
+  GELX_PETSC(TaoSetSolution(_tao, p));
+  GELX_PETSC(TaoSetVariableBounds(_tao, _lower, _upper));
+  GELX_PETSC(TaoSetFromOptions(_tao));
+  solve_guarded(callback_error, [&] { return TaoSolve(_tao); });
+  TaoConvergedReason reason;
+  GELX_PETSC(TaoGetConvergedReason(_tao, &reason));
+  parameters = on_every_rank(p, _design->function_space()->mesh()->comm());
+  // The system at the last iterate's equilibrium (TAO's last evaluation may be a trial point)
+  set_design(p);
+  solve_forward();
+  GELX_PETSC(VecDestroy(&p));
+  _observe = nullptr;
+  return reason;
+}
+
+} // namespace gelx

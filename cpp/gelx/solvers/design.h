@@ -1,0 +1,100 @@
+#pragma once
+/// @file design.h
+/// Inverse design: the design parameters that minimise an objective of an equilibrium, by
+/// PETSc TAO with gradients from the adjoint (adjoint.h).
+
+#include <gelx/solvers/adjoint.h>
+#include <gelx/solvers/newton.h>
+#include <gelx/solvers/path.h>
+
+#include <dolfinx/fem/Function.h>
+#include <functional>
+#include <memory>
+#include <petscmat.h>
+#include <petsctao.h>
+#include <string>
+#include <vector>
+
+namespace gelx
+{
+
+/// One iterate of a DesignOptimizer.
+struct DesignIterate
+{
+  int iteration = 0;
+  double objective = 0;
+  /// The norm of the gradient TAO judges convergence by (the projected gradient of a
+  /// bound-constrained method: zero at an optimum on a bound)
+  double gradient_norm = 0;
+  std::vector<double> parameters; ///< p, on every rank
+  int forward_solves = 0;         ///< so far: equilibria solved (Newton solves and load steps)
+  int newton_iterations = 0;      ///< so far, over all forward solves
+  int adjoint_solves = 0;         ///< so far
+  double wall_time = 0;           ///< so far (s)
+};
+
+/// Minimises J(u(p), s(p)) over n design parameters p, u the equilibrium of a NonlinearSystem
+/// at the design field s(p) = s_fixed + T p: parameter k sets the cells (dofs of the DG0
+/// design space) that `parameter_of(X)` maps to k at their midpoint X, and the others keep
+/// their value (e.g. a prestretch per slab of one layer of a strip, the other layer fixed).
+///
+/// The optimiser is PETSc TAO, options prefix `prefix` (by default `design_`: -design_tao_type,
+/// -design_tao_gatol, ...), by default BLMVM (bound-constrained limited-memory quasi-Newton),
+/// with the bounds of set_bounds. Each evaluation of J and dJ/dp solves the equilibrium at s(p)
+/// by Newton from the last one (the state of the previous evaluation); when that fails, from
+/// the same state by load steps that move s from its last value to the new one (a design
+/// change too large for one Newton solve), then the adjoint (AdjointGradient) gives
+/// dJ/dp = T^T dJ/ds: one forward and one adjoint solve per evaluation, whatever n is.
+///
+/// The parameters are few (a pattern per slab, a handful of global numbers): rank 0 owns them
+/// all, and TAO's vectors are of that layout.
+class DesignOptimizer
+{
+public:
+  DesignOptimizer(NonlinearSystem& system, NewtonSolver& newton, AdjointGradient& adjoint,
+                  std::shared_ptr<dolfinx::fem::Function<double>> design, int num_parameters,
+                  const std::function<int(const double* X)>& parameter_of,
+                  const std::string& prefix = "design_");
+  ~DesignOptimizer();
+  DesignOptimizer(const DesignOptimizer&) = delete;
+  DesignOptimizer& operator=(const DesignOptimizer&) = delete;
+
+  /// lower <= p_k <= upper for every k (a prestretch must stay positive; a bound also keeps
+  /// the line search's trial designs in the range where the forward solve is meaningful).
+  void set_bounds(double lower, double upper);
+  /// Minimise from p (every rank the same values), calling `observe` after every iterate (the
+  /// start included: iteration 0). On return p holds the last iterate and the system its
+  /// equilibrium. Returns TAO's converged reason (negative: it gave up). Throws
+  /// ConvergenceError when an equilibrium cannot be found. Collective.
+  int minimise(std::vector<double>& p, const std::function<void(const DesignIterate&)>& observe);
+
+  /// J(p) and dJ/dp into `gradient` (TAO's layout): the forward solve, then the adjoint.
+  /// For the TAO callback. Collective.
+  double evaluate(Vec p, Vec gradient);
+  /// For the TAO callback: report the iterate TAO accepted.
+  void iterate_accepted();
+  std::exception_ptr callback_error;
+
+private:
+  /// s = s_fixed + T p into the design Function (owned and ghost values)
+  void set_design(Vec p);
+  /// The equilibrium at the design now in the Function, from the last one
+  void solve_forward();
+
+  NonlinearSystem& _system;
+  NewtonSolver& _newton;
+  AdjointGradient& _adjoint;
+  std::shared_ptr<dolfinx::fem::Function<double>> _design;
+  std::string _prefix;
+  Tao _tao = nullptr;
+  Mat _T = nullptr;              ///< design dofs (owned rows) x parameters (rank 0's columns)
+  Vec _fixed = nullptr;          ///< s_fixed: the design's values where no parameter acts
+  Vec _design_vec = nullptr;     ///< the design Function's values as a PETSc vector
+  Vec _lower = nullptr, _upper = nullptr;
+  OwnedVec _last_state, _last_design; ///< the last equilibrium and its design
+  const std::function<void(const DesignIterate&)>* _observe = nullptr;
+  DesignIterate _counts;
+  double _start_time = 0;
+};
+
+} // namespace gelx

@@ -45,8 +45,9 @@ int main(int argc, char* argv[])
         strip.solve_from_rest(newton, guess);
 
         const std::unique_ptr<gelx::AdjointGradient> adjoint = strip.adjoint(strip.problem());
-        gelx::DesignOptimizer optimizer(strip.problem(), newton, *adjoint, strip.stretch(), n,
-                                        [&](const double* X) { return strip.slab_of(X); });
+        gelx::DesignOptimizer optimizer(strip.problem(), newton, *adjoint, strip.prestretch(), n,
+                                        [&](const double* X, int component)
+                                        { return strip.parameter_of(X, component); });
         optimizer.set_bounds(0.7, 1.2);
         double J0 = NAN, J = NAN;
         std::vector<double> p = guess;

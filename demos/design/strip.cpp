@@ -2,6 +2,8 @@
 
 #include "design_strip.h" // the generated forms
 
+#include <algorithm>
+#include <cmath>
 #include <dolfinx/fem/utils.h>
 #include <gelx/solvers/load_stepping.h>
 
@@ -27,13 +29,13 @@ DesignStrip::DesignStrip(MPI_Comm comm, const DesignStripGeometry& geometry, dou
       _u(std::make_shared<fem::Function<double>>(
           space(functionspace_form_design_strip_residual, "u", _mesh.mesh))),
       _u_target(std::make_shared<fem::Function<double>>(_u->function_space())),
-      _s(std::make_shared<fem::Function<double>>(
-          space(functionspace_form_design_strip_residual_d_stretch, "stretch", _mesh.mesh))),
-      _forms(_mesh.mesh, {{"u", _u}, {"u_target", _u_target}, {"stretch", _s}},
+      _prestretch(std::make_shared<fem::Function<double>>(space(
+          functionspace_form_design_strip_residual_d_prestretch, "prestretch", _mesh.mesh))),
+      _forms(_mesh.mesh, {{"u", _u}, {"u_target", _u_target}, {"prestretch", _prestretch}},
              {{"G", G}, {"K", K}, {"regularisation", regularisation}, {"stretch_prior", 1.0}})
 {
   auto V = _u->function_space();
-  _s->x()->set(1.0);
+  set_design(std::vector<double>(_geometry.num_parameters(), 1.0));
   _bcs = std::make_unique<DirichletConditions>(V, _mesh.facet_tags);
   for (int k = 0; k < 3; ++k)
     _bcs->fix(_mesh.tag("x_min"), k);
@@ -43,36 +45,39 @@ DesignStrip::DesignStrip(MPI_Comm comm, const DesignStripGeometry& geometry, dou
       _forms.expression(expression_design_strip_det_F));
 }
 
-int DesignStrip::slab_of(const double* X) const
+int DesignStrip::parameter_of(const double* X, int component) const
 {
-  if (X[2] < _geometry.thickness / 2)
+  if (X[2] < _geometry.thickness / 2 || (component == 1 && !_geometry.design_angle))
     return -1;
-  const int k = static_cast<int>(X[0] / _geometry.length * _geometry.slabs);
-  return std::clamp(k, 0, _geometry.slabs - 1);
+  const int slab = std::clamp(static_cast<int>(X[0] / _geometry.length * _geometry.slabs), 0,
+                              _geometry.slabs - 1);
+  return component * _geometry.slabs + slab;
 }
 
-void DesignStrip::set_slabs(const std::vector<double>& stretch)
+void DesignStrip::set_design(const std::vector<double>& p, double angle)
 {
-  const std::vector<double> X = _s->function_space()->tabulate_dof_coordinates(false);
-  std::span<double> values = _s->x()->mutable_array();
+  const std::vector<double> X = _prestretch->function_space()->tabulate_dof_coordinates(false);
+  std::span<double> values = _prestretch->x()->mutable_array();
   for (std::size_t i = 0; i < values.size(); ++i)
   {
-    const int k = slab_of(&X[3 * i]);
-    values[i] = k < 0 ? 1.0 : stretch.at(k);
+    const int component = i % 2, k = parameter_of(&X[3 * (i / 2)], component);
+    values[i] = k >= 0 ? p.at(k) : component == 0 ? 1.0 : angle;
   }
 }
 
-void DesignStrip::solve_from_rest(NewtonSolver& newton, const std::vector<double>& stretch)
+void DesignStrip::solve_from_rest(NewtonSolver& newton, const std::vector<double>& p,
+                                  double angle)
 {
   _u->x()->set(0.0);
   _problem->unknowns_changed();
   LoadStepper(*_problem, newton, {},
               [&](double t)
               {
-                std::vector<double> partial(stretch.size());
-                for (std::size_t k = 0; k < stretch.size(); ++k)
-                  partial[k] = 1 + t * (stretch[k] - 1);
-                set_slabs(partial);
+                // the stretches from 1 (stress free whatever the angle) to theirs
+                std::vector<double> partial(p);
+                for (int k = 0; k < _geometry.slabs; ++k)
+                  partial[k] = 1 + t * (p[k] - 1);
+                set_design(partial, angle);
               })
       .run();
 }
@@ -80,12 +85,49 @@ void DesignStrip::solve_from_rest(NewtonSolver& newton, const std::vector<double
 std::unique_ptr<AdjointGradient> DesignStrip::adjoint(NonlinearSystem& system) const
 {
   auto V = _u->function_space();
-  auto S = _s->function_space();
+  auto D = _prestretch->function_space();
   return std::make_unique<AdjointGradient>(
-      system, _s, _forms.form(form_design_strip_residual_d_stretch, {V, S}),
+      system, _prestretch, _forms.form(form_design_strip_residual_d_prestretch, {V, D}),
       Objective{_forms.form(form_design_strip_objective),
                 _forms.form(form_design_strip_objective_d_state, {V}),
-                _forms.form(form_design_strip_objective_d_stretch, {S})});
+                _forms.form(form_design_strip_objective_d_prestretch, {D})});
+}
+
+CentrelineSamples DesignStrip::centreline() const
+{
+  // Per node layer: the sum of the owned nodes' positions and their number, and the positions
+  // of the interface's edges y = 0 and y = width
+  const int layers = 2 * _geometry.cells[0] + 1; // Q2 nodes
+  const double spacing = _geometry.length / (layers - 1), tol = 1e-8 * _geometry.length;
+  std::vector<double> sums(layers * 10, 0.0); // centre (3), count, edge y = 0 (3), y = width (3)
+  const auto V = _u->function_space();
+  const std::int32_t owned = V->dofmap()->index_map->size_local();
+  const std::vector<double> X = V->tabulate_dof_coordinates(false);
+  const std::span<const double> u = _u->x()->array();
+  for (std::int32_t n = 0; n < owned; ++n)
+  {
+    const double* Xn = &X[3 * n];
+    double* s = &sums[10 * static_cast<int>(std::lround(Xn[0] / spacing))];
+    for (int i = 0; i < 3; ++i)
+      s[i] += Xn[i] + u[3 * n + i];
+    s[3] += 1;
+    const bool interface = std::abs(Xn[2] - _geometry.thickness / 2) < tol;
+    const bool low = std::abs(Xn[1]) < tol, high = std::abs(Xn[1] - _geometry.width) < tol;
+    if (interface && (low || high))
+      for (int i = 0; i < 3; ++i)
+        s[(low ? 4 : 7) + i] = Xn[i] + u[3 * n + i];
+  }
+  MPI_Allreduce(MPI_IN_PLACE, sums.data(), sums.size(), MPI_DOUBLE, MPI_SUM,
+                _mesh.mesh->comm());
+  CentrelineSamples samples;
+  for (int k = 0; k < layers; ++k)
+  {
+    const double* s = &sums[10 * k];
+    samples.Z.push_back(k * spacing);
+    samples.centre.push_back({s[0] / s[3], s[1] / s[3], s[2] / s[3]});
+    samples.width.push_back({s[7] - s[4], s[8] - s[5], s[9] - s[6]});
+  }
+  return samples;
 }
 
 } // namespace gelx::scenes

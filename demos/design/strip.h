@@ -1,8 +1,11 @@
 #pragma once
 /// @file strip.h
-/// The strip of inverse design (thesis §5.2.1): a bilayer whose upper layer's prestretch is
-/// the design, per slab along its length, and the objective of the shape it settles into
-/// (forms/design_strip.py). Shared by the design scene and its tests.
+/// The strip of inverse design (thesis §5.2.1): a bilayer whose upper layer's prestretch (its
+/// stretch and, optionally, its direction) is the design, per slab along its length, and the
+/// objective of the shape it settles into (forms/design_strip.py). Shared by the design scene
+/// and its tests.
+
+#include "centreline.h"
 
 #include <array>
 #include <dolfinx/fem/Function.h>
@@ -21,19 +24,24 @@ namespace gelx::scenes
 
 struct DesignStripGeometry
 {
-  double length = 10, width = 1, thickness = 1;  ///< along x, y, z
-  std::array<std::size_t, 3> cells{20, 2, 2};    ///< hexahedra along x, y, z
-  int slabs = 10; ///< design parameters: the upper layer's prestretch in slabs along x
+  double length = 10, width = 1, thickness = 1; ///< along x, y, z
+  std::array<std::size_t, 3> cells{20, 2, 2};   ///< hexahedra along x, y, z
+  int slabs = 10; ///< the upper layer's prestretch is designed in slabs along x
+  /// Whether the prestretch's direction is designed too (an angle per slab after the stretches:
+  /// parameters s_0..s_{n-1}, a_0..a_{n-1}); otherwise only the stretches, the angle fixed.
+  bool design_angle = false;
+  int num_parameters() const { return design_angle ? 2 * slabs : slabs; }
 };
 
 /// The strip [0, length] x [0, width] x [0, thickness], compressible neo-Hookean (Eq. 3.1,
-/// G and K), clamped at x = 0. Its cells carry the axial stretch s of their stress-free state,
-/// F0 = diag(s, s^-1/2, s^-1/2): in the upper layer (z > thickness/2) s is design parameter k
-/// on slab k (length/slabs long), in the lower layer 1. s < 1 in the upper layer curls the
-/// strip up, by a curvature of about 3 (1 - s) / (2 thickness) for small misfits (Timoshenko's
-/// bimetal with equal layers). The objective (forms/design_strip.py) is the distance to a
-/// target displacement field, 1/2 int |u - u_target|^2 dX, plus a Tikhonov term
-/// regularisation/2 int (s - 1)^2 dX.
+/// G and K), clamped at x = 0. Its cells carry the prestretch of forms/design_strip.py: the
+/// stretch s of their stress-free state along the in-plane direction at angle a from x. In
+/// the upper layer (z > thickness/2), slab k (length/slabs long) has s = p_k and, with
+/// design_angle, a = p_{slabs + k}; the lower layer is stress free (s = 1). s < 1 in the upper
+/// layer curls the strip up, by a curvature of about 3 (1 - s) / (2 thickness) for small
+/// misfits (Timoshenko's bimetal with equal layers); a != 0 twists it as it curls, into a
+/// helix. The objective is the distance to a target displacement field,
+/// 1/2 int |u - u_target|^2 dX, plus a Tikhonov term regularisation/2 int (s - 1)^2 dX.
 class DesignStrip
 {
 public:
@@ -42,28 +50,34 @@ public:
 
   NonlinearProblem& problem() { return *_problem; }
   std::shared_ptr<dolfinx::fem::Function<double>> displacement() const { return _u; }
-  std::shared_ptr<dolfinx::fem::Function<double>> stretch() const { return _s; }
+  /// The design field (stretch, angle) per cell.
+  std::shared_ptr<dolfinx::fem::Function<double>> prestretch() const { return _prestretch; }
   std::shared_ptr<dolfinx::fem::Function<double>> target() const { return _u_target; }
   const TaggedMesh& mesh() const { return _mesh; }
   const DesignStripGeometry& geometry() const { return _geometry; }
   FormBinding& forms() { return _forms; }
 
-  /// The design parameter of the cell with midpoint X: its slab in the upper layer, -1 in the
-  /// lower (fixed at s = 1).
-  int slab_of(const double* X) const;
-  /// s per slab (upper layer), 1 in the lower layer.
-  void set_slabs(const std::vector<double>& stretch);
-  /// The equilibrium at the slab stretches `stretch`, by load steps from the stress-free
-  /// s = 1 (u = 0). Throws ConvergenceError when the path fails. Collective.
-  void solve_from_rest(NewtonSolver& newton, const std::vector<double>& stretch);
+  /// The design parameter that sets component c (0 stretch, 1 angle) of the cell with
+  /// midpoint X, -1 where none does (the lower layer, the angle when it is not designed).
+  int parameter_of(const double* X, int component) const;
+  /// The design p (num_parameters() values); the angle `angle` where it is not designed.
+  void set_design(const std::vector<double>& p, double angle = 0);
+  /// The equilibrium at the design p, by load steps from the stress-free state (u = 0, the
+  /// stretches 1). Throws ConvergenceError when the path fails. Collective.
+  void solve_from_rest(NewtonSolver& newton, const std::vector<double>& p, double angle = 0);
 
   /// The adjoint gradient of the objective on `system` (this problem or a decorator of it).
   std::unique_ptr<AdjointGradient> adjoint(NonlinearSystem& system) const;
 
+  /// The deformed strip's centreline, sampled at every node layer x = const: the centroid of
+  /// the section's nodes and the width vector of the interface z = thickness/2 (the deformed
+  /// positions of its edges y = 0 and y = width), for analyse_centreline. Collective.
+  CentrelineSamples centreline() const;
+
 private:
   DesignStripGeometry _geometry;
   TaggedMesh _mesh;
-  std::shared_ptr<dolfinx::fem::Function<double>> _u, _u_target, _s;
+  std::shared_ptr<dolfinx::fem::Function<double>> _u, _u_target, _prestretch;
   FormBinding _forms;
   std::unique_ptr<DirichletConditions> _bcs;
   std::unique_ptr<NonlinearProblem> _problem;

@@ -44,16 +44,17 @@ DesignOptimizer::DesignOptimizer(NonlinearSystem& system, NewtonSolver& newton,
                                  AdjointGradient& adjoint,
                                  std::shared_ptr<dolfinx::fem::Function<double>> design,
                                  int num_parameters,
-                                 const std::function<int(const double* X)>& parameter_of,
+                                 const std::function<int(const double* X, int component)>& parameter_of,
                                  const std::string& prefix)
     : _system(system), _newton(newton), _adjoint(adjoint), _design(std::move(design)),
       _prefix(prefix)
 {
   const MPI_Comm comm = _design->function_space()->mesh()->comm();
   const bool root = dolfinx::MPI::rank(comm) == 0;
-  const auto& map = *_design->function_space()->dofmap()->index_map;
-  const std::int32_t owned = map.size_local();
-  const std::int64_t first = map.local_range()[0];
+  const auto& dofmap = *_design->function_space()->dofmap();
+  const int bs = dofmap.index_map_bs();
+  const std::int32_t owned = dofmap.index_map->size_local() * bs;
+  const std::int64_t first = dofmap.index_map->local_range()[0] * bs;
 
   // T: a 1 where parameter k sets design dof i
   GELX_PETSC(MatCreateAIJ(comm, owned, root ? num_parameters : 0, PETSC_DETERMINE,
@@ -66,7 +67,7 @@ DesignOptimizer::DesignOptimizer(NonlinearSystem& system, NewtonSolver& newton,
   GELX_PETSC(VecGetArray(_fixed, &fixed));
   for (std::int32_t i = 0; i < owned; ++i)
   {
-    const int k = parameter_of(&X[3 * i]);
+    const int k = parameter_of(&X[3 * (i / bs)], i % bs);
     if (k < 0)
       continue;
     if (k >= num_parameters)

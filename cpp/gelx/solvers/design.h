@@ -34,9 +34,10 @@ struct DesignIterate
 };
 
 /// Minimises J(u(p), s(p)) over n design parameters p, u the equilibrium of a NonlinearSystem
-/// at the design field s(p) = s_fixed + T p: parameter k sets the cells (dofs of the DG0
-/// design space) that `parameter_of(X)` maps to k at their midpoint X, and the others keep
-/// their value (e.g. a prestretch per slab of one layer of a strip, the other layer fixed).
+/// at the design field s(p) = s_fixed + T p: parameter k sets component c of the cells (dofs of
+/// the DG0 design space, of one or more components) that `parameter_of(X, c)` maps to k at
+/// their midpoint X; where it gives -1 the design keeps its value (e.g. a prestretch per slab
+/// of one layer of a strip, the other layer fixed).
 ///
 /// The optimiser is PETSc TAO, options prefix `prefix` (by default `design_`: -design_tao_type,
 /// -design_tao_gatol, ...), by default BLMVM (bound-constrained limited-memory quasi-Newton),
@@ -53,7 +54,7 @@ class DesignOptimizer
 public:
   DesignOptimizer(NonlinearSystem& system, NewtonSolver& newton, AdjointGradient& adjoint,
                   std::shared_ptr<dolfinx::fem::Function<double>> design, int num_parameters,
-                  const std::function<int(const double* X)>& parameter_of,
+                  const std::function<int(const double* X, int component)>& parameter_of,
                   const std::string& prefix = "design_");
   ~DesignOptimizer();
   DesignOptimizer(const DesignOptimizer&) = delete;

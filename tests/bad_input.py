@@ -124,6 +124,17 @@ CASES = {
         ("bonded_ellipsoid", ["--shape", "ellipsoid"], "is a free body: give --sides free"),
         ("unknown_shape", ["--shape", "cylinder"], "must be box or ellipsoid"),
     ],
+    "design": [
+        ("stretch_bounds_crossed", ["--stretch_min", "1.1", "--stretch_max", "0.9"],
+         "stretch_min must be below stretch_max"),
+        ("angle_bound_at_right_angle", ["--angle_max", "1.6"],
+         "'angle_max' = 1.6: must lie in (0, pi/2)"),
+        ("odd_layers", ["--nz", "3"], "'nz' = 3: must be even"),
+        ("fewer_cells_than_slabs", ["--nx", "5", "--slabs", "10"],
+         "nx must be at least the number of slabs"),
+        ("negative_radius", ["--radius", "-1"], "'radius' = -1: must be positive"),
+        ("zero_pitch", ["--pitch", "0"], "'pitch' = 0: must be positive"),
+    ],
     "bistrip": [
         ("unknown_layer_kind", ["--section", "B 9x3, Q 9x3"], "unknown kind 'Q'"),
         ("layer_without_size", ["--section", "B 9x3, A 9"], "write KIND WIDTHxTHICKNESS"),
@@ -157,7 +168,7 @@ TWO_RANKS = {"block": ["missing_mesh", "dt_above_dt_max", "fieldsplit_not_mixed"
              "inflation": ["B_equal_A"], "buckling": ["ty_equal_tx"],
              "fiber_gel": ["cell_narrower_than_fiber", "phi_f_beyond_one"],
              "bistrip": ["unknown_layer_kind", "end_distance_beyond_L"],
-             "swelling": ["mu_below_reference"]}
+             "swelling": ["mu_below_reference"], "design": ["fewer_cells_than_slabs"]}
 
 # A valid scene file per scene (values other than the defaults, for a run of a few seconds),
 # with the status its run must end in. The buckling run stops after max_steps on its straight
@@ -171,6 +182,8 @@ SCENE_FILES = {
     "fiber_gel": ({"l": "20", "L": "35", "D": "25", "h_fiber": "3", "h_far": "8"}, "completed"),
     "bistrip": ({"ends": "free", "stretch": "1.02", "L": "60", "nz": "20"}, "completed"),
     "swelling": ({"nz": "10", "chi": "0.5", "end_time": "100", "ramp_time": "2"}, "completed"),
+    "design": ({"length": "4", "nx": "4", "slabs": "2", "radius": "2", "pitch": "3"},
+               "completed"),
     "flory_rehner": ({"n_phi": "20", "n_eps": "11", "n_nu_vm": "0.01", "peo_n_grid": "5",
                       "alpha0": "0.77", "phi_i_max": "0.45"}, "completed"),
 }

@@ -48,7 +48,7 @@ int main(int argc, char* argv[])
         gelx::DesignOptimizer optimizer(strip.problem(), newton, *adjoint, strip.prestretch(), n,
                                         [&](const double* X, int component)
                                         { return strip.parameter_of(X, component); });
-        optimizer.set_bounds(0.7, 1.2);
+        optimizer.set_bounds(std::vector<double>(n, 0.7), std::vector<double>(n, 1.2));
         double J0 = NAN, J = NAN;
         std::vector<double> p = guess;
         const int reason = optimizer.minimise(

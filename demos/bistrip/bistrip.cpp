@@ -376,15 +376,7 @@ CentrelineSamples Bistrip::centreline() const
         s[(_X[3 * n] < 0 ? 4 : 7) + i] = X[3 * n + i] + u[3 * n + i];
   }
   MPI_Allreduce(MPI_IN_PLACE, sums.data(), sums.size(), MPI_DOUBLE, MPI_SUM, _geo.mesh->comm());
-  CentrelineSamples samples;
-  for (int k = 0; k < layers; ++k)
-  {
-    const double* s = &sums[10 * k];
-    samples.Z.push_back(k * spacing);
-    samples.centre.push_back({s[0] / s[3], s[1] / s[3], s[2] / s[3]});
-    samples.width.push_back({s[7] - s[4], s[8] - s[5], s[9] - s[6]});
-  }
-  return samples;
+  return samples_from_layer_sums(sums, spacing);
 }
 
 std::pair<double, double> Bistrip::mirror_asymmetry(const fem::Function<double>& v) const

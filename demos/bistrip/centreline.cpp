@@ -8,6 +8,19 @@
 namespace gelx::scenes
 {
 
+CentrelineSamples samples_from_layer_sums(const std::vector<double>& sums, double spacing)
+{
+  CentrelineSamples samples;
+  for (std::size_t k = 0; k < sums.size() / 10; ++k)
+  {
+    const double* s = &sums[10 * k];
+    samples.Z.push_back(k * spacing);
+    samples.centre.push_back({s[0] / s[3], s[1] / s[3], s[2] / s[3]});
+    samples.width.push_back({s[7] - s[4], s[8] - s[5], s[9] - s[6]});
+  }
+  return samples;
+}
+
 namespace
 {
 using Vec3 = std::array<double, 3>;

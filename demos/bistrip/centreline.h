@@ -20,6 +20,11 @@ struct CentrelineSamples
   std::vector<std::array<double, 3>> centre, width;
 };
 
+/// The samples from per-layer sums, 10 numbers per node layer k (at Z = k spacing), summed over
+/// all ranks: the sum of the layer's node positions (3) and their number, and the positions
+/// of the two edges whose difference is the width vector (3 each, the first subtracted).
+CentrelineSamples samples_from_layer_sums(const std::vector<double>& sums, double spacing);
+
 /// A stretch of the strip of one chirality.
 struct HelicalSegment
 {

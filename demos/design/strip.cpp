@@ -47,11 +47,12 @@ DesignStrip::DesignStrip(MPI_Comm comm, const DesignStripGeometry& geometry, dou
 
 int DesignStrip::parameter_of(const double* X, int component) const
 {
-  if (X[2] < _geometry.thickness / 2 || (component == 1 && !_geometry.design_angle))
+  const bool lower = X[2] < _geometry.thickness / 2;
+  if ((lower && !_geometry.design_lower) || (component == 1 && !_geometry.design_angle))
     return -1;
   const int slab = std::clamp(static_cast<int>(X[0] / _geometry.length * _geometry.slabs), 0,
                               _geometry.slabs - 1);
-  return component * _geometry.slabs + slab;
+  return (lower ? _geometry.parameters_per_layer() : 0) + component * _geometry.slabs + slab;
 }
 
 void DesignStrip::set_design(const std::vector<double>& p, double angle)
@@ -75,8 +76,12 @@ void DesignStrip::solve_from_rest(NewtonSolver& newton, const std::vector<double
               {
                 // the stretches from 1 (stress free whatever the angle) to theirs
                 std::vector<double> partial(p);
-                for (int k = 0; k < _geometry.slabs; ++k)
-                  partial[k] = 1 + t * (p[k] - 1);
+                for (int layer = 0; layer < (_geometry.design_lower ? 2 : 1); ++layer)
+                  for (int k = 0; k < _geometry.slabs; ++k)
+                  {
+                    const int i = layer * _geometry.parameters_per_layer() + k;
+                    partial[i] = 1 + t * (p[i] - 1);
+                  }
                 set_design(partial, angle);
               })
       .run();
@@ -93,7 +98,7 @@ std::unique_ptr<AdjointGradient> DesignStrip::adjoint(NonlinearSystem& system) c
                 _forms.form(form_design_strip_objective_d_prestretch, {D})});
 }
 
-CentrelineSamples DesignStrip::centreline() const
+CentrelineSamples DesignStrip::centreline(const fem::Function<double>& displacement) const
 {
   // Per node layer: the sum of the owned nodes' positions and their number, and the positions
   // of the interface's edges y = 0 and y = width
@@ -103,7 +108,7 @@ CentrelineSamples DesignStrip::centreline() const
   const auto V = _u->function_space();
   const std::int32_t owned = V->dofmap()->index_map->size_local();
   const std::vector<double> X = V->tabulate_dof_coordinates(false);
-  const std::span<const double> u = _u->x()->array();
+  const std::span<const double> u = displacement.x()->array();
   for (std::int32_t n = 0; n < owned; ++n)
   {
     const double* Xn = &X[3 * n];
@@ -119,15 +124,7 @@ CentrelineSamples DesignStrip::centreline() const
   }
   MPI_Allreduce(MPI_IN_PLACE, sums.data(), sums.size(), MPI_DOUBLE, MPI_SUM,
                 _mesh.mesh->comm());
-  CentrelineSamples samples;
-  for (int k = 0; k < layers; ++k)
-  {
-    const double* s = &sums[10 * k];
-    samples.Z.push_back(k * spacing);
-    samples.centre.push_back({s[0] / s[3], s[1] / s[3], s[2] / s[3]});
-    samples.width.push_back({s[7] - s[4], s[8] - s[5], s[9] - s[6]});
-  }
-  return samples;
+  return samples_from_layer_sums(sums, spacing);
 }
 
 } // namespace gelx::scenes

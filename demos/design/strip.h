@@ -30,14 +30,20 @@ struct DesignStripGeometry
   /// Whether the prestretch's direction is designed too (an angle per slab after the stretches:
   /// parameters s_0..s_{n-1}, a_0..a_{n-1}); otherwise only the stretches, the angle fixed.
   bool design_angle = false;
-  int num_parameters() const { return design_angle ? 2 * slabs : slabs; }
+  /// Whether the lower layer is designed too, its parameters after the upper layer's (else it
+  /// is stress free): with both layers free the strip can curl without shortening its
+  /// centreline (one layer shorter, the other longer), as a target of given arc length needs.
+  bool design_lower = false;
+  int parameters_per_layer() const { return design_angle ? 2 * slabs : slabs; }
+  int num_parameters() const { return (design_lower ? 2 : 1) * parameters_per_layer(); }
 };
 
 /// The strip [0, length] x [0, width] x [0, thickness], compressible neo-Hookean (Eq. 3.1,
 /// G and K), clamped at x = 0. Its cells carry the prestretch of forms/design_strip.py: the
 /// stretch s of their stress-free state along the in-plane direction at angle a from x. In
 /// the upper layer (z > thickness/2), slab k (length/slabs long) has s = p_k and, with
-/// design_angle, a = p_{slabs + k}; the lower layer is stress free (s = 1). s < 1 in the upper
+/// design_angle, a = p_{slabs + k}; the lower layer is stress free (s = 1), or, with
+/// design_lower, designed likewise by the next parameters_per_layer() ones. s < 1 in the upper
 /// layer curls the strip up, by a curvature of about 3 (1 - s) / (2 thickness) for small
 /// misfits (Timoshenko's bimetal with equal layers); a != 0 twists it as it curls, into a
 /// helix. The objective is the distance to a target displacement field,
@@ -58,7 +64,7 @@ public:
   FormBinding& forms() { return _forms; }
 
   /// The design parameter that sets component c (0 stretch, 1 angle) of the cell with
-  /// midpoint X, -1 where none does (the lower layer, the angle when it is not designed).
+  /// midpoint X, -1 where none does (a layer or an angle that is not designed).
   int parameter_of(const double* X, int component) const;
   /// The design p (num_parameters() values); the angle `angle` where it is not designed.
   void set_design(const std::vector<double>& p, double angle = 0);
@@ -69,10 +75,11 @@ public:
   /// The adjoint gradient of the objective on `system` (this problem or a decorator of it).
   std::unique_ptr<AdjointGradient> adjoint(NonlinearSystem& system) const;
 
-  /// The deformed strip's centreline, sampled at every node layer x = const: the centroid of
-  /// the section's nodes and the width vector of the interface z = thickness/2 (the deformed
-  /// positions of its edges y = 0 and y = width), for analyse_centreline. Collective.
-  CentrelineSamples centreline() const;
+  /// The strip deformed by u (the displacement, or the target), its centreline sampled at
+  /// every node layer x = const: the centroid of the section's nodes and the width vector of
+  /// the interface z = thickness/2 (the deformed positions of its edges y = 0 and y = width),
+  /// for analyse_centreline. Collective.
+  CentrelineSamples centreline(const dolfinx::fem::Function<double>& u) const;
 
 private:
   DesignStripGeometry _geometry;

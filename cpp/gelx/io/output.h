@@ -79,7 +79,7 @@ private:
 /// - mode (a buckling mode's shape, normalised; modes/*.xdmf)
 inline const std::vector<std::string> field_names
     = {"displacement", "cauchy_stress", "energy_density", "contact_status", "contact_gap",
-       "contact_force", "mode", "chemical_potential", "swelling_ratio"};
+       "contact_force", "mode", "chemical_potential", "swelling_ratio", "target_displacement"};
 
 /// The fields a scene writes at every step, updated and written together: displacements at
 /// the mesh nodes (NodalField), stresses and energy densities per cell (CellField). Each

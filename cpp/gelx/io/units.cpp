@@ -71,6 +71,14 @@ const std::map<std::string, Dimension>& dimensions()
       {"phi0", D::none},
       {"thickness", D::length}, {"front_depth", D::length}, {"phi_i", D::none}, {"phi_f", D::none},
       {"slenderness", D::none}, {"area_ratio", D::none},
+      // Inverse design: the distance to the target, the helix asked for and formed, the cost
+      {"rms_distance", D::length}, {"rms_distance_start", D::length},
+      {"target_radius", D::length}, {"target_pitch", D::length},
+      {"target_helix_radius", D::length}, {"target_helix_pitch", D::length},
+      {"start_helix_radius", D::length}, {"start_helix_pitch", D::length},
+      {"radius_error", D::none}, {"pitch_error", D::none}, {"angle", D::none},
+      {"num_parameters", D::none}, {"optimizer_reason", D::none}, {"forward_solves", D::none},
+      {"adjoint_solves", D::none}, {"layer", D::text},
       // Fits of the pyramid's contact width l_c/L against d/H and sqrt(f)
       {"slope_lc_vs_d", D::none}, {"slope_lc_vs_d_extrapolated", D::none},
       {"slope_lc_vs_d_gap_law", D::none}, {"intercept_lc_vs_d", D::none},
@@ -115,7 +123,8 @@ const std::map<std::string, Dimension>& dimensions()
       // The run's cost
       {"wall_time", D::time}, {"elapsed", D::time}, {"setup_time", D::time},
       {"eigen_time", D::time}, {"diagram_time", D::time}, {"seconds", D::time},
-      {"seconds_total", D::time}, {"time_per_step", D::time},
+      {"seconds_total", D::time}, {"forward_time", D::time}, {"adjoint_time", D::time},
+      {"time_per_step", D::time},
       {"time_per_arclength_step", D::time}, {"time_per_corrector_iteration", D::time},
       {"time_per_newton_iteration", D::time}, {"wall_time_with_extrapolation", D::time},
       {"stable_step", D::time}, {"smallest_stable_step", D::time}};

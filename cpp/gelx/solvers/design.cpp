@@ -24,6 +24,17 @@ PetscErrorCode monitor(Tao, void* context)
   return guarded_callback(optimizer.callback_error, [&] { optimizer.iterate_accepted(); });
 }
 
+/// A vector of parameters from their values (the same on every rank)
+void set_parameters(Vec v, const std::vector<double>& values)
+{
+  PetscInt first, last;
+  GELX_PETSC(VecGetOwnershipRange(v, &first, &last));
+  for (PetscInt k = first; k < last; ++k)
+    GELX_PETSC(VecSetValue(v, k, values.at(k), INSERT_VALUES));
+  GELX_PETSC(VecAssemblyBegin(v));
+  GELX_PETSC(VecAssemblyEnd(v));
+}
+
 /// All entries of a vector whose entries rank 0 owns, on every rank
 std::vector<double> on_every_rank(Vec v, MPI_Comm comm)
 {
@@ -95,7 +106,8 @@ DesignOptimizer::DesignOptimizer(NonlinearSystem& system, NewtonSolver& newton,
   GELX_PETSC(TaoSetMonitor(_tao, monitor, this, nullptr));
   GELX_PETSC(MatCreateVecs(_T, &_lower, nullptr));
   GELX_PETSC(VecDuplicate(_lower, &_upper));
-  set_bounds(PETSC_NINFINITY, PETSC_INFINITY);
+  GELX_PETSC(VecSet(_lower, PETSC_NINFINITY));
+  GELX_PETSC(VecSet(_upper, PETSC_INFINITY));
 }
 
 DesignOptimizer::~DesignOptimizer()
@@ -106,10 +118,11 @@ DesignOptimizer::~DesignOptimizer()
     VecDestroy(v);
 }
 
-void DesignOptimizer::set_bounds(double lower, double upper)
+void DesignOptimizer::set_bounds(const std::vector<double>& lower,
+                                 const std::vector<double>& upper)
 {
-  GELX_PETSC(VecSet(_lower, lower));
-  GELX_PETSC(VecSet(_upper, upper));
+  set_parameters(_lower, lower);
+  set_parameters(_upper, upper);
 }
 
 void DesignOptimizer::set_design(Vec p)
@@ -147,15 +160,20 @@ void DesignOptimizer::solve_forward()
 
 double DesignOptimizer::evaluate(Vec p, Vec gradient)
 {
+  const double start = MPI_Wtime();
   set_design(p);
   solve_forward();
   GELX_PETSC(VecCopy(_system.unknowns(), _last_state.get()));
   GELX_PETSC(VecCopy(_design_vec, _last_design.get()));
+  const double solved = MPI_Wtime();
   const OwnedVec dJ_ds(_adjoint.create_design_vector());
   _adjoint.gradient(dJ_ds.get());
   ++_counts.adjoint_solves;
   GELX_PETSC(MatMultTranspose(_T, dJ_ds.get(), gradient));
-  return _adjoint.value();
+  const double J = _adjoint.value();
+  _counts.forward_time += solved - start;
+  _counts.adjoint_time += MPI_Wtime() - solved;
+  return J;
 }
 
 void DesignOptimizer::iterate_accepted()
@@ -186,12 +204,7 @@ int DesignOptimizer::minimise(std::vector<double>& parameters,
   _last_design = copy_of(_design_vec);
   Vec p;
   GELX_PETSC(MatCreateVecs(_T, &p, nullptr));
-  PetscInt first, last;
-  GELX_PETSC(VecGetOwnershipRange(p, &first, &last));
-  for (PetscInt k = first; k < last; ++k)
-    GELX_PETSC(VecSetValue(p, k, parameters.at(k), INSERT_VALUES));
-  GELX_PETSC(VecAssemblyBegin(p));
-  GELX_PETSC(VecAssemblyEnd(p));
+  set_parameters(p, parameters);
 
   GELX_PETSC(TaoSetSolution(_tao, p));
   GELX_PETSC(TaoSetVariableBounds(_tao, _lower, _upper));

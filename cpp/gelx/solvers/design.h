@@ -30,6 +30,8 @@ struct DesignIterate
   int forward_solves = 0;         ///< so far: equilibria solved (Newton solves and load steps)
   int newton_iterations = 0;      ///< so far, over all forward solves
   int adjoint_solves = 0;         ///< so far
+  double forward_time = 0;        ///< so far, in the forward solves (s)
+  double adjoint_time = 0;        ///< so far, in the adjoint solves and gradients (s)
   double wall_time = 0;           ///< so far (s)
 };
 
@@ -60,9 +62,10 @@ public:
   DesignOptimizer(const DesignOptimizer&) = delete;
   DesignOptimizer& operator=(const DesignOptimizer&) = delete;
 
-  /// lower <= p_k <= upper for every k (a prestretch must stay positive; a bound also keeps
-  /// the line search's trial designs in the range where the forward solve is meaningful).
-  void set_bounds(double lower, double upper);
+  /// lower_k <= p_k <= upper_k (a prestretch must stay positive; a bound also keeps the line
+  /// search's trial designs in the range where the forward solve is meaningful). The same
+  /// values on every rank.
+  void set_bounds(const std::vector<double>& lower, const std::vector<double>& upper);
   /// Minimise from p (every rank the same values), calling `observe` after every iterate (the
   /// start included: iteration 0). On return p holds the last iterate and the system its
   /// equilibrium. Returns TAO's converged reason (negative: it gave up). Throws

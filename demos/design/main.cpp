@@ -1,0 +1,285 @@
+// gelx scene: design — the prestretch that curls a bilayer strip into a prescribed helix
+// (thesis §5.2.1, inverse design)
+//
+// Sample runs:
+//   ./gelx run design                                  # R = 3, P = 6 on a 20 x 1 x 1 strip
+//   ./gelx run design --radius 4 --pitch 3 --slabs 5
+//   ./gelx run design --design_angle false             # the stretch alone: a ring, no pitch
+//   ./gelx run design -design_tao_monitor              # TAO's own iteration lines
+//
+// A bilayer strip L x W x H of the compressible neo-Hookean solid of thesis Eq. 3.1 (G, K),
+// clamped at x = 0 (which only removes its rigid motions), its two layers prestretched
+// (forms/design_strip.py): in each of `slabs` slabs along the strip, the stretch s of the
+// stress-free state along the in-plane direction at angle a from the strip's axis,
+// F0 = Q(a) diag(s, s^-1/2, s^-1/2) Q(a)^T. An upper layer that wants to be shorter than the
+// lower one curls the strip; a direction off the axis twists it as it curls: a helix. Both
+// layers are designed (--design_lower), so that the strip can curl without shortening its
+// centreline, as a helix of its length needs.
+//
+// The design problem: which s and a per slab make the strip a helix of radius R and pitch P?
+// The target is the placement of the whole strip on that helix, its material frame carried by
+// the helix's rotation: x*(X) = r(X1) + (X2 - W/2) d1(X1) + (X3 - H/2) d2(X1), the frame
+// (t, d1, d2) starting as (e_x, e_y, e_z) and turning at the constant rate Omega = tau t -
+// kappa d1 with kappa = R / (R^2 + c^2), tau = c / (R^2 + c^2), c = P / (2 pi) (the helix's
+// curvature and torsion); the objective J = 1/2 int |u - (x* - X)|^2 dX. The start is the
+// narrow-strip theory of a bilayer (Timoshenko's curvature 3 eps / (2 H) for a misfit eps
+// between equal layers, split between them, and, for a prestretch at angle a, curvature and
+// twist in the ratio 1 : tan a, so that eps = 2 H / (3 R), tan a = P / (2 pi R)). PETSc TAO's
+// BLMVM (-design_tao_*) minimises J within bounds on s and a, with the adjoint gradient
+// (gelx::AdjointGradient: one forward and one adjoint solve per evaluation, whatever the
+// number of slabs); each forward solve starts from the last equilibrium. The run reports J
+// (as the rms distance to the target) per iteration, and the helix the strip forms, before
+// and after, read off its centreline by the bistrip's helix detector (the middle 80 %):
+// radius and pitch against R and P (README.md).
+
+#include "strip.h"
+
+#include "design_strip.h" // the generated forms
+
+#include <cmath>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/io/program.h>
+#include <gelx/io/progress.h>
+#include <gelx/solvers/design.h>
+
+namespace
+{
+/// The helix's placement of the strip (see the header): the displacement x*(X) - X
+struct HelixTarget
+{
+  double radius, pitch, width, thickness;
+  /// x*(X) - X at X
+  std::array<double, 3> displacement(const double* X) const
+  {
+    const double c = pitch / (2 * M_PI), kappa = radius / (radius * radius + c * c),
+                 tau = c / (radius * radius + c * c), omega = std::hypot(kappa, tau);
+    // The rotation by angle omega X1 about the fixed axis n = (tau, -kappa, 0) / omega
+    const std::array<double, 3> n = {tau / omega, -kappa / omega, 0};
+    const double angle = omega * X[0], cs = std::cos(angle), sn = std::sin(angle);
+    auto rotate = [&](const std::array<double, 3>& v)
+    {
+      const double along = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
+      const std::array<double, 3> cross
+          = {n[1] * v[2] - n[2] * v[1], n[2] * v[0] - n[0] * v[2], n[0] * v[1] - n[1] * v[0]};
+      std::array<double, 3> r;
+      for (int i = 0; i < 3; ++i)
+        r[i] = v[i] * cs + cross[i] * sn + n[i] * along * (1 - cs);
+      return r;
+    };
+    // r(X1) = r(0) + int_0^X1 t: the part of e_x along n advances, the rest turns
+    const double along = n[0];
+    const std::array<double, 3> normal_part = {1 - along * n[0], -along * n[1], -along * n[2]};
+    const std::array<double, 3> n_cross_ex = {0, n[2], -n[1]};
+    std::array<double, 3> x;
+    const std::array<double, 3> d1 = rotate({0, 1, 0}), d2 = rotate({0, 0, 1});
+    for (int i = 0; i < 3; ++i)
+    {
+      const double r = (i == 1 ? width / 2 : i == 2 ? thickness / 2 : 0) + n[i] * along * X[0]
+                       + normal_part[i] * sn / omega + n_cross_ex[i] * (1 - cs) / omega;
+      x[i] = r + (X[1] - width / 2) * d1[i] + (X[2] - thickness / 2) * d2[i];
+    }
+    return {x[0] - X[0], x[1] - X[1], x[2] - X[2]};
+  }
+};
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  // 1. Scene parameters (lengths in mm, stresses in MPa)
+  gelx::scenes::DesignStripGeometry g;
+  g.length = 20;
+  g.cells = {40, 2, 2};
+  g.design_angle = true;
+  g.design_lower = true;
+  int nx = 40, ny = 2, nz = 2;
+  double G = 1, K = 10, radius = 3, pitch = 6;
+  double stretch_min = 0.5, stretch_max = 1.2, angle_max = 1.2;
+  gelx::Parameters prm;
+  prm.bind("geometry", "length", g.length, "strip length along x (mm)", gelx::Parameters::positive);
+  prm.bind("geometry", "width", g.width, "strip width along y (mm)", gelx::Parameters::positive);
+  prm.bind("geometry", "thickness", g.thickness, "strip thickness along z, two equal layers (mm)",
+           gelx::Parameters::positive);
+  prm.bind("mesh", "nx", nx, "Q2 hexahedra along the length", [](int n)
+           { return n >= 1 ? "" : "must be at least 1"; });
+  prm.bind("mesh", "ny", ny, "Q2 hexahedra across the width",
+           [](int n) { return n >= 1 ? "" : "must be at least 1"; });
+  prm.bind("mesh", "nz", nz, "Q2 hexahedra through the thickness, even (the layers' interface "
+           "is a cell face)", [](int n) { return n >= 2 && n % 2 == 0 ? "" : "must be even"; });
+  prm.bind("material", "G", G, "shear modulus (MPa)", gelx::Parameters::positive);
+  prm.bind("material", "K", K, "bulk modulus (MPa)", gelx::Parameters::positive);
+  prm.bind("target", "radius", radius, "radius R of the helix to form (mm)",
+           gelx::Parameters::positive);
+  prm.bind("target", "pitch", pitch, "pitch P of the helix to form (mm)",
+           gelx::Parameters::positive);
+  prm.bind("design", "slabs", g.slabs, "slabs along the strip, each with its prestretch",
+           [](int n) { return n >= 1 ? "" : "must be at least 1"; });
+  prm.bind("design", "design_angle", g.design_angle,
+           "design the prestretch's direction per slab too (else it stays along the strip)");
+  prm.bind("design", "design_lower", g.design_lower,
+           "design the lower layer's prestretch too (else it is stress free and the strip's "
+           "centreline shortens as it curls)");
+  prm.bind("design", "stretch_min", stretch_min, "lower bound of the stretch s",
+           gelx::Parameters::positive);
+  prm.bind("design", "stretch_max", stretch_max, "upper bound of the stretch s",
+           gelx::Parameters::positive);
+  prm.bind("design", "angle_max", angle_max, "bound of |a| (radians, below pi/2)",
+           [](double a) { return a > 0 && a < M_PI / 2 ? "" : "must lie in (0, pi/2)"; });
+
+  return gelx::run_program(argc, argv, "gelx-design", prm, [&](gelx::Run& run)
+  {
+    if (stretch_min >= stretch_max)
+      throw gelx::InputError("stretch_min must be below stretch_max");
+    if (nx < g.slabs)
+      throw gelx::InputError("nx must be at least the number of slabs");
+    g.cells = {std::size_t(nx), std::size_t(ny), std::size_t(nz)};
+
+    // 2. The strip and its target: the helix's placement
+    gelx::scenes::DesignStrip strip(run.comm(), g, G, K);
+    const HelixTarget helix{radius, pitch, g.width, g.thickness};
+    strip.target()->interpolate(
+        [&](auto X)
+        {
+          xt::xtensor<double, 2> values({std::size_t(3), X.shape(1)});
+          for (std::size_t i = 0; i < X.shape(1); ++i)
+          {
+            const double point[3] = {X(0, i), X(1, i), X(2, i)};
+            const std::array<double, 3> u = helix.displacement(point);
+            for (int c = 0; c < 3; ++c)
+              values(c, i) = u[c];
+          }
+          return values;
+        });
+
+    // 3. The start: the narrow-strip theory's uniform prestretch, the misfit split between the
+    //    layers (the upper one shorter, the lower one longer, the centreline unstretched)
+    const int n = g.slabs, m = g.num_parameters(), per_layer = g.parameters_per_layer();
+    const double misfit = 2 * g.thickness / (3 * radius),
+                 a0 = std::atan(pitch / (2 * M_PI * radius));
+    std::vector<double> p(m), lower(m, stretch_min), upper(m, stretch_max);
+    for (int layer = 0; layer < (g.design_lower ? 2 : 1); ++layer)
+      for (int k = 0; k < n; ++k)
+      {
+        const int i = layer * per_layer + k;
+        const double share = g.design_lower ? misfit / 2 : misfit;
+        p[i] = std::clamp(layer == 0 ? 1 - share : 1 + share, stretch_min, stretch_max);
+        if (g.design_angle)
+          std::tie(p[i + n], lower[i + n], upper[i + n])
+              = std::make_tuple(a0, -angle_max, angle_max);
+      }
+    gelx::NewtonSolver newton(run.comm());
+    strip.solve_from_rest(newton, p, g.design_angle ? a0 : 0.0);
+    const double volume = g.length * g.width * g.thickness;
+    // The helix the strip forms: its centreline's mean curvature and twist away from the ends
+    // (the clamp's boundary layer and the free end's), the middle 80 % of its length
+    struct Helix
+    {
+      double radius, pitch;
+    };
+    auto helix_of = [&](const dolfinx::fem::Function<double>& u)
+    {
+      const gelx::scenes::CentrelineSamples samples = strip.centreline(u);
+      const auto analysis = gelx::scenes::analyse_centreline(samples);
+      double kappa = 0, tau = 0;
+      int count = 0;
+      for (std::size_t i = 0; i < samples.Z.size(); ++i)
+        if (samples.Z[i] >= 0.1 * g.length && samples.Z[i] <= 0.9 * g.length)
+        {
+          kappa += analysis.curvature[i];
+          tau += analysis.twist[i];
+          ++count;
+        }
+      kappa /= count;
+      tau /= count;
+      const double k2 = kappa * kappa + tau * tau;
+      return Helix{kappa / k2, 2 * M_PI * std::abs(tau) / k2};
+    };
+    const Helix start = helix_of(*strip.displacement()), target = helix_of(*strip.target());
+
+    gelx::ResultsWriter& results = run.results(strip.mesh().mesh);
+    gelx::FieldSet fields;
+    fields.add("displacement", strip.displacement());
+    fields.add("target_displacement", strip.target());
+    fields.add("energy_density", strip.forms().expression(expression_design_strip_psi));
+    results.write_fields(0, fields.update());
+
+    // 4. Minimise J by BLMVM with the adjoint gradient
+    const std::unique_ptr<gelx::AdjointGradient> adjoint = strip.adjoint(strip.problem());
+    gelx::DesignOptimizer optimizer(strip.problem(), newton, *adjoint, strip.prestretch(), m,
+                                    [&](const double* X, int c)
+                                    { return strip.parameter_of(X, c); });
+    optimizer.set_bounds(lower, upper);
+    // Stop when the gradient has fallen by 1e-5: J is then within ~1e-10 of its start's scale
+    // of the optimum, the shape far closer than the mesh resolves it (README: the tail)
+    gelx::set_default_option("design_", "tao_gttol", "1e-5");
+    double gradient0 = NAN;
+    int newton_before = 0;
+    std::vector<nlohmann::json> design_rows;
+    gelx::ProgressLine progress(
+        run.comm(), {.load_name = "rms distance",
+                     .quantity = [&] {
+                       return gelx::quantity_text("|g|/|g0|",
+                                                  run.summary.value("gradient_norm_ratio", 1.0));
+                     }});
+    const int reason = optimizer.minimise(
+        p,
+        [&](const gelx::DesignIterate& it)
+        {
+          if (it.iteration == 0)
+            gradient0 = it.gradient_norm;
+          const double rms = std::sqrt(2 * it.objective / volume);
+          results.append_step({{"step", it.iteration},
+                               {"rms_distance", rms},
+                               {"gradient_norm_ratio", it.gradient_norm / gradient0},
+                               {"forward_solves", it.forward_solves},
+                               {"newton_iterations", it.newton_iterations},
+                               {"adjoint_solves", it.adjoint_solves},
+                               {"forward_time", it.forward_time},
+                               {"adjoint_time", it.adjoint_time},
+                               {"wall_time", it.wall_time}});
+          for (int layer = 0; layer < (g.design_lower ? 2 : 1); ++layer)
+            for (int k = 0; k < n; ++k)
+            {
+              const int i = layer * per_layer + k;
+              design_rows.push_back({{"step", it.iteration},
+                                     {"layer", layer == 0 ? "upper" : "lower"},
+                                     {"slab", k},
+                                     {"stretch", it.parameters[i]},
+                                     {"angle", g.design_angle ? it.parameters[i + n] : 0.0}});
+            }
+          run.summary.update({{"iterations", it.iteration},
+                              {"rms_distance", rms},
+                              {"forward_solves", it.forward_solves},
+                              {"adjoint_solves", it.adjoint_solves},
+                              {"forward_time", it.forward_time},
+                              {"adjoint_time", it.adjoint_time},
+                              {"newton_iterations", it.newton_iterations}});
+          if (it.iteration == 0)
+            run.summary["rms_distance_start"] = rms;
+          run.summary["gradient_norm_ratio"] = it.gradient_norm / gradient0;
+          gelx::StepRecord record;
+          record.step = it.iteration;
+          record.newton.iterations = it.newton_iterations - newton_before;
+          newton_before = it.newton_iterations;
+          progress.print(record, rms, NAN);
+        });
+    results.write_table("design.csv", design_rows);
+    results.write_fields(1, fields.update());
+
+    // 5. The helix formed, against the target
+    const Helix end = helix_of(*strip.displacement());
+    run.summary.update({{"num_dofs", strip.problem().u()->function_space()->dofmap()->index_map
+                                         ->size_global() * 3},
+                        {"num_parameters", m},
+                        {"optimizer_reason", reason},
+                        {"target_radius", radius},
+                        {"target_pitch", pitch},
+                        {"target_helix_radius", target.radius},
+                        {"target_helix_pitch", target.pitch},
+                        {"start_helix_radius", start.radius},
+                        {"start_helix_pitch", start.pitch},
+                        {"helix_radius", end.radius},
+                        {"helix_pitch", end.pitch},
+                        {"radius_error", std::abs(end.radius - radius) / radius},
+                        {"pitch_error", std::abs(end.pitch - pitch) / pitch}});
+  });
+}

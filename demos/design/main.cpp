@@ -227,8 +227,11 @@ int main(int argc, char* argv[])
           if (it.iteration == 0)
             gradient0 = it.gradient_norm;
           const double rms = std::sqrt(2 * it.objective / volume);
+          const Helix shape = helix_of(*strip.displacement());
           results.append_step({{"step", it.iteration},
                                {"rms_distance", rms},
+                               {"helix_radius", shape.radius},
+                               {"helix_pitch", shape.pitch},
                                {"gradient_norm_ratio", it.gradient_norm / gradient0},
                                {"forward_solves", it.forward_solves},
                                {"newton_iterations", it.newton_iterations},

@@ -127,6 +127,7 @@ void DesignOptimizer::set_bounds(const std::vector<double>& lower,
 
 void DesignOptimizer::set_design(Vec p)
 {
+  GELX_PETSC(VecCopy(p, _last_parameters.get()));
   GELX_PETSC(MatMultAdd(_T, p, _fixed, _design_vec));
   _design->x()->scatter_fwd();
 }
@@ -136,9 +137,14 @@ void DesignOptimizer::solve_forward()
   NewtonReport report = _newton.solve(_system);
   ++_counts.forward_solves;
   _counts.newton_iterations += report.iterations;
-  if (report.converged)
-    return;
+  if (!report.converged)
+    solve_forward_by_steps();
+  GELX_PETSC(VecCopy(_system.unknowns(), _last_state.get()));
+  GELX_PETSC(VecCopy(_design_vec, _last_design.get()));
+}
 
+void DesignOptimizer::solve_forward_by_steps()
+{
   // Too large a change of the design for one Newton solve: load steps from the last design,
   // s(t) = s_last + t (s_new - s_last), from the last equilibrium
   const OwnedVec target = copy_of(_design_vec);
@@ -163,8 +169,6 @@ double DesignOptimizer::evaluate(Vec p, Vec gradient)
   const double start = MPI_Wtime();
   set_design(p);
   solve_forward();
-  GELX_PETSC(VecCopy(_system.unknowns(), _last_state.get()));
-  GELX_PETSC(VecCopy(_design_vec, _last_design.get()));
   const double solved = MPI_Wtime();
   const OwnedVec dJ_ds(_adjoint.create_design_vector());
   _adjoint.gradient(dJ_ds.get());
@@ -176,6 +180,17 @@ double DesignOptimizer::evaluate(Vec p, Vec gradient)
   return J;
 }
 
+void DesignOptimizer::equilibrium_at(Vec p)
+{
+  PetscBool same;
+  GELX_PETSC(VecEqual(p, _last_parameters.get(), &same));
+  if (!same)
+  {
+    set_design(p);
+    solve_forward();
+  }
+}
+
 void DesignOptimizer::iterate_accepted()
 {
   PetscInt iteration;
@@ -185,6 +200,7 @@ void DesignOptimizer::iterate_accepted()
                                   &reason));
   Vec p;
   GELX_PETSC(TaoGetSolution(_tao, &p));
+  equilibrium_at(p);
   DesignIterate iterate = _counts;
   iterate.iteration = iteration;
   iterate.objective = J;
@@ -205,6 +221,7 @@ int DesignOptimizer::minimise(std::vector<double>& parameters,
   Vec p;
   GELX_PETSC(MatCreateVecs(_T, &p, nullptr));
   set_parameters(p, parameters);
+  _last_parameters = copy_of(p);
 
   GELX_PETSC(TaoSetSolution(_tao, p));
   GELX_PETSC(TaoSetVariableBounds(_tao, _lower, _upper));
@@ -213,9 +230,7 @@ int DesignOptimizer::minimise(std::vector<double>& parameters,
   TaoConvergedReason reason;
   GELX_PETSC(TaoGetConvergedReason(_tao, &reason));
   parameters = on_every_rank(p, _design->function_space()->mesh()->comm());
-  // The system at the last iterate's equilibrium (TAO's last evaluation may be a trial point)
-  set_design(p);
-  solve_forward();
+  equilibrium_at(p);
   GELX_PETSC(VecDestroy(&p));
   _observe = nullptr;
   return reason;

@@ -67,8 +67,8 @@ public:
   /// values on every rank.
   void set_bounds(const std::vector<double>& lower, const std::vector<double>& upper);
   /// Minimise from p (every rank the same values), calling `observe` after every iterate (the
-  /// start included: iteration 0). On return p holds the last iterate and the system its
-  /// equilibrium. Returns TAO's converged reason (negative: it gave up). Throws
+  /// start included: iteration 0) with the system at that iterate's equilibrium (its shape can
+  /// be measured there). On return p holds the last iterate and the system its equilibrium. Returns TAO's converged reason (negative: it gave up). Throws
   /// ConvergenceError when an equilibrium cannot be found. Collective.
   int minimise(std::vector<double>& p, const std::function<void(const DesignIterate&)>& observe);
 
@@ -84,6 +84,12 @@ private:
   void set_design(Vec p);
   /// The equilibrium at the design now in the Function, from the last one
   void solve_forward();
+  /// When Newton fails: load steps from the last equilibrium that carry the design from the
+  /// last one to the new one
+  void solve_forward_by_steps();
+  /// The forward solve at p, unless the last one was at p (TAO's last evaluation before an
+  /// iterate is usually, not always, the iterate itself: a line search may end on another)
+  void equilibrium_at(Vec p);
 
   NonlinearSystem& _system;
   NewtonSolver& _newton;
@@ -95,7 +101,8 @@ private:
   Vec _fixed = nullptr;          ///< s_fixed: the design's values where no parameter acts
   Vec _design_vec = nullptr;     ///< the design Function's values as a PETSc vector
   Vec _lower = nullptr, _upper = nullptr;
-  OwnedVec _last_state, _last_design; ///< the last equilibrium and its design
+  /// The last equilibrium, its design field and its parameters
+  OwnedVec _last_state, _last_design, _last_parameters;
   const std::function<void(const DesignIterate&)>* _observe = nullptr;
   DesignIterate _counts;
   double _start_time = 0;

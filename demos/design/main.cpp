@@ -166,8 +166,20 @@ int main(int argc, char* argv[])
           std::tie(p[i + n], lower[i + n], upper[i + n])
               = std::make_tuple(a0, -angle_max, angle_max);
       }
+    // A restart (--restart) continues from the checkpoint of the last iterate written: its
+    // design, its equilibrium (the checkpoint's unknowns) and the history so far
     gelx::NewtonSolver newton(run.comm());
-    strip.solve_from_rest(newton, p, g.design_angle ? a0 : 0.0);
+    gelx::PathState path = run.start_path(strip.problem());
+    const bool restarted = path.scene.contains("parameters");
+    const double before_gradient0 = path.scene.value("gradient0", 0.0);
+    const double fixed_angle = g.design_angle ? a0 : 0.0;
+    if (restarted)
+    {
+      p = path.scene["parameters"].get<std::vector<double>>();
+      strip.set_design(p, fixed_angle);
+    }
+    else
+      strip.solve_from_rest(newton, p, fixed_angle);
     const double volume = g.length * g.width * g.thickness;
     // The helix the strip forms: its centreline's mean curvature and twist away from the ends
     // (the clamp's boundary layer and the free end's), the middle 80 % of its length
@@ -193,14 +205,21 @@ int main(int argc, char* argv[])
       const double k2 = kappa * kappa + tau * tau;
       return Helix{kappa / k2, 2 * M_PI * std::abs(tau) / k2};
     };
-    const Helix start = helix_of(*strip.displacement()), target = helix_of(*strip.target());
+    const Helix target = helix_of(*strip.target());
+    if (!restarted)
+    {
+      const Helix start = helix_of(*strip.displacement());
+      run.summary.update(
+          {{"start_helix_radius", start.radius}, {"start_helix_pitch", start.pitch}});
+    }
 
     gelx::ResultsWriter& results = run.results(strip.mesh().mesh);
     gelx::FieldSet fields;
     fields.add("displacement", strip.displacement());
     fields.add("target_displacement", strip.target());
     fields.add("energy_density", strip.forms().expression(expression_design_strip_psi));
-    results.write_fields(0, fields.update());
+    if (!restarted)
+      results.write_fields(0, fields.update());
 
     // 4. Minimise J by BLMVM with the adjoint gradient
     const std::unique_ptr<gelx::AdjointGradient> adjoint = strip.adjoint(strip.problem());
@@ -208,12 +227,24 @@ int main(int argc, char* argv[])
                                     [&](const double* X, int c)
                                     { return strip.parameter_of(X, c); });
     optimizer.set_bounds(lower, upper);
-    // Stop when the gradient has fallen by 1e-5: J is then within ~1e-10 of its start's scale
-    // of the optimum, the shape far closer than the mesh resolves it (README: the tail)
-    gelx::set_default_option("design_", "tao_gttol", "1e-5");
-    double gradient0 = NAN;
+    // Stop when the gradient has fallen by 1e-5 from the start's: J is then within ~1e-10 of
+    // its start's scale of the optimum, the shape far closer than the mesh resolves it
+    // (README: the tail). A restart's TAO starts anew, so there the bound is absolute.
+    if (restarted)
+    {
+      char gatol[32];
+      std::snprintf(gatol, sizeof gatol, "%.17g", 1e-5 * before_gradient0);
+      gelx::set_default_options("design_", {{"tao_gatol", gatol}, {"tao_gttol", "0"}});
+    }
+    else
+      gelx::set_default_option("design_", "tao_gttol", "1e-5");
+    // The history: totals over the runs before a restart, and this run's own counts
+    const nlohmann::json before = path.scene;
+    const int first_iteration = path.step;
+    std::vector<nlohmann::json> design_rows
+        = before.value("design_rows", std::vector<nlohmann::json>{});
     int newton_before = 0;
-    std::vector<nlohmann::json> design_rows;
+    const gelx::StepObserver checkpoint = run.checkpoints();
     gelx::ProgressLine progress(
         run.comm(), {.load_name = "rms distance",
                      .quantity = [&] {
@@ -224,48 +255,61 @@ int main(int argc, char* argv[])
         p,
         [&](const gelx::DesignIterate& it)
         {
-          if (it.iteration == 0)
-            gradient0 = it.gradient_norm;
+          if (restarted && it.iteration == 0)
+            return; // the checkpoint's iterate, written by the run before
+          const int iteration = first_iteration + it.iteration;
+          if (iteration == 0)
+            path.scene["gradient0"] = it.gradient_norm;
+          auto total = [&](const char* key, auto now)
+          { return before.value(key, now * 0) + now; };
+          const nlohmann::json totals
+              = {{"forward_solves", total("forward_solves", it.forward_solves)},
+                 {"newton_iterations", total("newton_iterations", it.newton_iterations)},
+                 {"adjoint_solves", total("adjoint_solves", it.adjoint_solves)},
+                 {"forward_time", total("forward_time", it.forward_time)},
+                 {"adjoint_time", total("adjoint_time", it.adjoint_time)},
+                 {"wall_time", total("wall_time", it.wall_time)}};
           const double rms = std::sqrt(2 * it.objective / volume);
+          const double gradient_ratio = it.gradient_norm / path.scene["gradient0"].get<double>();
           const Helix shape = helix_of(*strip.displacement());
-          results.append_step({{"step", it.iteration},
-                               {"rms_distance", rms},
-                               {"helix_radius", shape.radius},
-                               {"helix_pitch", shape.pitch},
-                               {"gradient_norm_ratio", it.gradient_norm / gradient0},
-                               {"forward_solves", it.forward_solves},
-                               {"newton_iterations", it.newton_iterations},
-                               {"adjoint_solves", it.adjoint_solves},
-                               {"forward_time", it.forward_time},
-                               {"adjoint_time", it.adjoint_time},
-                               {"wall_time", it.wall_time}});
+          nlohmann::json row = {{"step", iteration},
+                                {"rms_distance", rms},
+                                {"helix_radius", shape.radius},
+                                {"helix_pitch", shape.pitch},
+                                {"gradient_norm_ratio", gradient_ratio}};
+          row.update(totals);
+          results.append_step(row);
           for (int layer = 0; layer < (g.design_lower ? 2 : 1); ++layer)
             for (int k = 0; k < n; ++k)
             {
               const int i = layer * per_layer + k;
-              design_rows.push_back({{"step", it.iteration},
+              design_rows.push_back({{"step", iteration},
                                      {"layer", layer == 0 ? "upper" : "lower"},
                                      {"slab", k},
                                      {"stretch", it.parameters[i]},
                                      {"angle", g.design_angle ? it.parameters[i + n] : 0.0}});
             }
-          run.summary.update({{"iterations", it.iteration},
+          results.write_table("design.csv", design_rows);
+          run.summary.update(totals);
+          run.summary.erase("wall_time"); // the run's own, written at its end
+          run.summary.update({{"iterations", iteration},
                               {"rms_distance", rms},
-                              {"forward_solves", it.forward_solves},
-                              {"adjoint_solves", it.adjoint_solves},
-                              {"forward_time", it.forward_time},
-                              {"adjoint_time", it.adjoint_time},
-                              {"newton_iterations", it.newton_iterations}});
-          if (it.iteration == 0)
+                              {"gradient_norm_ratio", gradient_ratio}});
+          if (iteration == 0)
             run.summary["rms_distance_start"] = rms;
-          run.summary["gradient_norm_ratio"] = it.gradient_norm / gradient0;
+
+          // The checkpoint: this iterate's design and history (and, by Run, its equilibrium)
+          path.step = iteration;
+          path.scene.update(totals);
+          path.scene["parameters"] = it.parameters;
+          path.scene["design_rows"] = design_rows;
           gelx::StepRecord record;
-          record.step = it.iteration;
+          record.step = iteration;
           record.newton.iterations = it.newton_iterations - newton_before;
           newton_before = it.newton_iterations;
+          checkpoint(record, path);
           progress.print(record, rms, NAN);
         });
-    results.write_table("design.csv", design_rows);
     results.write_fields(1, fields.update());
 
     // 5. The helix formed, against the target
@@ -278,8 +322,6 @@ int main(int argc, char* argv[])
                         {"target_pitch", pitch},
                         {"target_helix_radius", target.radius},
                         {"target_helix_pitch", target.pitch},
-                        {"start_helix_radius", start.radius},
-                        {"start_helix_pitch", start.pitch},
                         {"helix_radius", end.radius},
                         {"helix_pitch", end.pitch},
                         {"radius_error", std::abs(end.radius - radius) / radius},

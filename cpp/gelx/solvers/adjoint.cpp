@@ -11,10 +11,10 @@
 namespace gelx
 {
 
-AdjointGradient::AdjointGradient(NonlinearSystem& system,
-                                 std::shared_ptr<const dolfinx::fem::Function<double>> design,
-                                 std::shared_ptr<const dolfinx::fem::Form<double>> residual_d_design,
-                                 Objective objective, const std::string& prefix)
+AdjointGradient::AdjointGradient(
+    NonlinearSystem& system, std::shared_ptr<const dolfinx::fem::Function<double>> design,
+    std::shared_ptr<const dolfinx::fem::Form<double>> residual_d_design, Objective objective,
+    const std::string& prefix)
     : _system(system), _design(std::move(design)),
       _residual_d_design(std::move(residual_d_design)), _objective(std::move(objective))
 {

@@ -55,7 +55,7 @@ DesignOptimizer::DesignOptimizer(NonlinearSystem& system, NewtonSolver& newton,
                                  AdjointGradient& adjoint,
                                  std::shared_ptr<dolfinx::fem::Function<double>> design,
                                  int num_parameters,
-                                 const std::function<int(const double* X, int component)>& parameter_of,
+                                 const std::function<int(const double*, int)>& parameter_of,
                                  const std::string& prefix)
     : _system(system), _newton(newton), _adjoint(adjoint), _design(std::move(design)),
       _prefix(prefix)

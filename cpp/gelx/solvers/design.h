@@ -68,8 +68,9 @@ public:
   void set_bounds(const std::vector<double>& lower, const std::vector<double>& upper);
   /// Minimise from p (every rank the same values), calling `observe` after every iterate (the
   /// start included: iteration 0) with the system at that iterate's equilibrium (its shape can
-  /// be measured there). On return p holds the last iterate and the system its equilibrium. Returns TAO's converged reason (negative: it gave up). Throws
-  /// ConvergenceError when an equilibrium cannot be found. Collective.
+  /// be measured there). On return p holds the last iterate and the system its equilibrium.
+  /// Returns TAO's converged reason (negative: it gave up). Throws ConvergenceError when an
+  /// equilibrium cannot be found. Collective.
   int minimise(std::vector<double>& p, const std::function<void(const DesignIterate&)>& observe);
 
   /// J(p) and dJ/dp into `gradient` (TAO's layout): the forward solve, then the adjoint.

@@ -41,7 +41,6 @@
 #include <dolfinx/fem/utils.h>
 #include <gelx/common/petsc_utils.h>
 #include <gelx/solvers/adjoint.h>
-#include <gelx/solvers/load_stepping.h>
 #include <gelx/solvers/newton.h>
 #include <gelx/systems/constraints.h>
 #include <gelx/systems/forms.h>
@@ -123,21 +122,7 @@ void taylor_test(MPI_Comm comm, Checks& checks, const Case& c)
     design[geometry.slabs + k] = 0.3 + 0.1 * std::cos(M_PI * (k + 0.5) / geometry.slabs);
   }
   gelx::NewtonSolver newton(comm);
-  if (c.constrained)
-  {
-    // the constrained system's own path (solve_from_rest drives the plain problem)
-    gelx::LoadStepper(*system, newton, {},
-                      [&](double t)
-                      {
-                        std::vector<double> partial(design);
-                        for (int k = 0; k < geometry.slabs; ++k)
-                          partial[k] = 1 + t * (design[k] - 1);
-                        strip.set_design(partial);
-                      })
-        .run();
-  }
-  else
-    strip.solve_from_rest(newton, design);
+  strip.solve_from_rest(*system, newton, design);
   const gelx::OwnedVec base = gelx::copy_of(system->unknowns());
   const double J0 = adjoint->value();
   const gelx::OwnedVec gradient(adjoint->create_design_vector());

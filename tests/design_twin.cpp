@@ -39,10 +39,10 @@ int main(int argc, char* argv[])
 
         // The twin: the shape of the known pattern is the target
         gelx::NewtonSolver newton(comm);
-        strip.solve_from_rest(newton, truth);
+        strip.solve_from_rest(strip.problem(), newton, truth);
         std::span<const double> shape = strip.displacement()->x()->array();
         std::copy(shape.begin(), shape.end(), strip.target()->x()->mutable_array().begin());
-        strip.solve_from_rest(newton, guess);
+        strip.solve_from_rest(strip.problem(), newton, guess);
 
         const std::unique_ptr<gelx::AdjointGradient> adjoint = strip.adjoint(strip.problem());
         gelx::DesignOptimizer optimizer(strip.problem(), newton, *adjoint, strip.prestretch(), n,

@@ -179,7 +179,7 @@ int main(int argc, char* argv[])
       strip.set_design(p, fixed_angle);
     }
     else
-      strip.solve_from_rest(newton, p, fixed_angle);
+      strip.solve_from_rest(strip.problem(), newton, p, fixed_angle);
     const double volume = g.length * g.width * g.thickness;
     // The helix the strip forms: its centreline's mean curvature and twist away from the ends
     // (the clamp's boundary layer and the free end's), the middle 80 % of its length
@@ -267,8 +267,10 @@ int main(int argc, char* argv[])
                  {"newton_iterations", total("newton_iterations", it.newton_iterations)},
                  {"adjoint_solves", total("adjoint_solves", it.adjoint_solves)},
                  {"forward_time", total("forward_time", it.forward_time)},
-                 {"adjoint_time", total("adjoint_time", it.adjoint_time)},
-                 {"wall_time", total("wall_time", it.wall_time)}};
+                 {"adjoint_time", total("adjoint_time", it.adjoint_time)}};
+          // the history's wall time, in steps.csv and the checkpoint (the summary has the
+          // run's own, written at its end)
+          const double wall_time = total("wall_time", it.wall_time);
           const double rms = std::sqrt(2 * it.objective / volume);
           const double gradient_ratio = it.gradient_norm / path.scene["gradient0"].get<double>();
           const Helix shape = helix_of(*strip.displacement());
@@ -278,6 +280,7 @@ int main(int argc, char* argv[])
                                 {"helix_pitch", shape.pitch},
                                 {"gradient_norm_ratio", gradient_ratio}};
           row.update(totals);
+          row["wall_time"] = wall_time;
           results.append_step(row);
           for (int layer = 0; layer < (g.design_lower ? 2 : 1); ++layer)
             for (int k = 0; k < n; ++k)
@@ -291,7 +294,6 @@ int main(int argc, char* argv[])
             }
           results.write_table("design.csv", design_rows);
           run.summary.update(totals);
-          run.summary.erase("wall_time"); // the run's own, written at its end
           run.summary.update({{"iterations", iteration},
                               {"rms_distance", rms},
                               {"gradient_norm_ratio", gradient_ratio}});
@@ -301,6 +303,7 @@ int main(int argc, char* argv[])
           // The checkpoint: this iterate's design and history (and, by Run, its equilibrium)
           path.step = iteration;
           path.scene.update(totals);
+          path.scene["wall_time"] = wall_time;
           path.scene["parameters"] = it.parameters;
           path.scene["design_rows"] = design_rows;
           gelx::StepRecord record;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <dolfinx/fem/utils.h>
+#include <gelx/common/petsc_utils.h>
 #include <gelx/solvers/load_stepping.h>
 
 using namespace dolfinx;
@@ -66,12 +67,12 @@ void DesignStrip::set_design(const std::vector<double>& p, double angle)
   }
 }
 
-void DesignStrip::solve_from_rest(NewtonSolver& newton, const std::vector<double>& p,
-                                  double angle)
+void DesignStrip::solve_from_rest(NonlinearSystem& system, NewtonSolver& newton,
+                                  const std::vector<double>& p, double angle)
 {
-  _u->x()->set(0.0);
-  _problem->unknowns_changed();
-  LoadStepper(*_problem, newton, {},
+  GELX_PETSC(VecSet(system.unknowns(), 0.0));
+  system.unknowns_changed();
+  LoadStepper(system, newton, {},
               [&](double t)
               {
                 // the stretches from 1 (stress free whatever the angle) to theirs

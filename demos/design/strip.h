@@ -68,9 +68,11 @@ public:
   int parameter_of(const double* X, int component) const;
   /// The design p (num_parameters() values); the angle `angle` where it is not designed.
   void set_design(const std::vector<double>& p, double angle = 0);
-  /// The equilibrium at the design p, by load steps from the stress-free state (u = 0, the
-  /// stretches 1). Throws ConvergenceError when the path fails. Collective.
-  void solve_from_rest(NewtonSolver& newton, const std::vector<double>& p, double angle = 0);
+  /// The equilibrium of `system` (this problem or a decorator of it) at the design p, by load
+  /// steps from the stress-free state (its unknowns 0, the stretches 1). Throws
+  /// ConvergenceError when the path fails. Collective.
+  void solve_from_rest(NonlinearSystem& system, NewtonSolver& newton,
+                       const std::vector<double>& p, double angle = 0);
 
   /// The adjoint gradient of the objective on `system` (this problem or a decorator of it).
   std::unique_ptr<AdjointGradient> adjoint(NonlinearSystem& system) const;

@@ -19,16 +19,15 @@ namespace gelx
 namespace
 {
 /// Throws unless the system's unknowns are its problem's dofs, in order: then a problem's
-/// operator or vector is one of the system as it is.
-void require_problem_layout(const NonlinearSystem& system)
+/// operator or vector is one of the system as it is. `system_vector` is one of the system's
+/// vectors (passed in rather than created: vectors are restricted once per solve).
+void require_problem_layout(const NonlinearSystem& system, Vec system_vector)
 {
   const auto& of_problem = system.unknown_of_problem_dof();
   const bool identity = std::all_of(of_problem.begin(), of_problem.end(),
                                     [i = PetscInt(0)](PetscInt k) mutable { return k == i++; });
   PetscInt n_local;
-  Vec x = system.create_vector();
-  GELX_PETSC(VecGetLocalSize(x, &n_local));
-  GELX_PETSC(VecDestroy(&x));
+  GELX_PETSC(VecGetLocalSize(system_vector, &n_local));
   if (!identity || PetscInt(of_problem.size()) != n_local)
     throw std::invalid_argument("this system's unknowns are not its problem's dofs (a bordered "
                                 "system): a problem's operator or vector has no meaning on them");
@@ -37,7 +36,9 @@ void require_problem_layout(const NonlinearSystem& system)
 
 Mat NonlinearSystem::restrict_operator(Mat A) const
 {
-  require_problem_layout(*this);
+  Vec x = create_vector();
+  require_problem_layout(*this, x);
+  GELX_PETSC(VecDestroy(&x));
   Mat copy;
   GELX_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &copy));
   return copy;
@@ -45,13 +46,13 @@ Mat NonlinearSystem::restrict_operator(Mat A) const
 
 void NonlinearSystem::restrict_vector(Vec f, Vec r) const
 {
-  require_problem_layout(*this);
+  require_problem_layout(*this, r);
   GELX_PETSC(VecCopy(f, r));
 }
 
 void NonlinearSystem::prolong_vector(Vec x, Vec u) const
 {
-  require_problem_layout(*this);
+  require_problem_layout(*this, x);
   GELX_PETSC(VecCopy(x, u));
 }
 

@@ -241,8 +241,6 @@ int main(int argc, char* argv[])
     // The history: totals over the runs before a restart, and this run's own counts
     const nlohmann::json before = path.scene;
     const int first_iteration = path.step;
-    std::vector<nlohmann::json> design_rows
-        = before.value("design_rows", std::vector<nlohmann::json>{});
     int newton_before = 0;
     const gelx::StepObserver checkpoint = run.checkpoints();
     gelx::ProgressLine progress(
@@ -282,6 +280,7 @@ int main(int argc, char* argv[])
           row.update(totals);
           row["wall_time"] = wall_time;
           results.append_step(row);
+          std::vector<nlohmann::json> design_rows;
           for (int layer = 0; layer < (g.design_lower ? 2 : 1); ++layer)
             for (int k = 0; k < n; ++k)
             {
@@ -292,7 +291,7 @@ int main(int argc, char* argv[])
                                      {"stretch", it.parameters[i]},
                                      {"angle", g.design_angle ? it.parameters[i + n] : 0.0}});
             }
-          results.write_table("design.csv", design_rows);
+          results.append_rows("design.csv", design_rows);
           run.summary.update(totals);
           run.summary.update({{"iterations", iteration},
                               {"rms_distance", rms},
@@ -300,12 +299,12 @@ int main(int argc, char* argv[])
           if (iteration == 0)
             run.summary["rms_distance_start"] = rms;
 
-          // The checkpoint: this iterate's design and history (and, by Run, its equilibrium)
+          // The checkpoint: this iterate's design and history (and, by Run, its equilibrium
+          // and how far steps.csv and design.csv have got)
           path.step = iteration;
           path.scene.update(totals);
           path.scene["wall_time"] = wall_time;
           path.scene["parameters"] = it.parameters;
-          path.scene["design_rows"] = design_rows;
           gelx::StepRecord record;
           record.step = iteration;
           record.newton.iterations = it.newton_iterations - newton_before;

@@ -266,54 +266,78 @@ ResultsWriter::ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
       _root(dolfinx::MPI::rank(comm) == 0), _units(units)
 {
   if (keep)
+  {
     continue_steps(keep->rows);
+    for (const auto& [name, rows] : keep->tables)
+      continue_table(name, rows);
+  }
+}
+
+void ResultsWriter::continue_table(const std::string& file_name, int rows)
+{
+  Table& table = _tables[file_name];
+  int found = rows;
+  if (_root)
+  {
+    std::ifstream in(_folder / file_name);
+    std::string units, header, line;
+    std::getline(in, units);
+    std::getline(in, header);
+    for (found = 0; found < rows && std::getline(in, line); ++found)
+      table.text += line + "\n";
+    if (rows > 0)
+    {
+      std::istringstream names(header);
+      for (std::string name; std::getline(names, name, ',');)
+        table.columns.push_back(name);
+      table.text = units + "\n" + header + "\n" + table.text;
+      replace_file(_folder / file_name, [&](std::ostream& file) { file << table.text; });
+    }
+    else
+      std::filesystem::remove(_folder / file_name); // the columns come from the first row again
+  }
+  MPI_Bcast(&found, 1, MPI_INT, 0, _comm);
+  if (found < rows)
+    throw std::runtime_error(file_name + " of " + _folder.string() + " holds "
+                             + std::to_string(found) + " rows, not the " + std::to_string(rows)
+                             + " to continue from");
+  table.rows = rows;
 }
 
 void ResultsWriter::continue_steps(int rows)
 {
   namespace fs = std::filesystem;
-  int found = rows;
-  if (_root)
+  continue_table("steps.csv", rows);
+  if (!_root)
+    return;
+  // Per-step files of the steps beyond (fields/ is the field series', checkpoint/ the
+  // checkpoints')
+  static const std::regex per_step(R"(step_(\d+)\..+)");
+  std::vector<fs::path> beyond;
+  for (auto it = fs::recursive_directory_iterator(_folder);
+       it != fs::recursive_directory_iterator(); ++it)
   {
-    std::ifstream in(_folder / "steps.csv");
-    std::string units, header, line;
-    std::getline(in, units);
-    std::getline(in, header);
-    for (found = 0; found < rows && std::getline(in, line); ++found)
-      _csv += line + "\n";
-    if (rows > 0)
-    {
-      std::istringstream names(header);
-      for (std::string name; std::getline(names, name, ',');)
-        _columns.push_back(name);
-      _csv = units + "\n" + header + "\n" + _csv;
-      replace_file(_folder / "steps.csv", [&](std::ostream& file) { file << _csv; });
-    }
-    else
-      fs::remove(_folder / "steps.csv"); // the columns come from the first row again
-    // Per-step files of the steps beyond (fields/ is the field series', checkpoint/ the
-    // checkpoints')
-    static const std::regex per_step(R"(step_(\d+)\..+)");
-    std::vector<fs::path> beyond;
-    for (auto it = fs::recursive_directory_iterator(_folder);
-         it != fs::recursive_directory_iterator(); ++it)
-    {
-      std::smatch m;
-      const std::string name = it->path().filename().string();
-      if (it->is_directory() && (name == "fields" || name == "checkpoint"))
-        it.disable_recursion_pending();
-      else if (it->is_regular_file() && std::regex_match(name, m, per_step)
-               && std::stoi(m[1]) > rows)
-        beyond.push_back(it->path());
-    }
-    for (const auto& file : beyond)
-      fs::remove(file);
+    std::smatch m;
+    const std::string name = it->path().filename().string();
+    if (it->is_directory() && (name == "fields" || name == "checkpoint"))
+      it.disable_recursion_pending();
+    else if (it->is_regular_file() && std::regex_match(name, m, per_step)
+             && std::stoi(m[1]) > rows)
+      beyond.push_back(it->path());
   }
-  MPI_Bcast(&found, 1, MPI_INT, 0, _comm);
-  if (found < rows)
-    throw std::runtime_error("steps.csv of " + _folder.string() + " holds " + std::to_string(found)
-                             + " rows, not the " + std::to_string(rows) + " to continue from");
-  _rows = rows;
+  for (const auto& file : beyond)
+    fs::remove(file);
+}
+
+ResultsProgress ResultsWriter::progress() const
+{
+  ResultsProgress progress{_fields.size(), 0, {}};
+  for (const auto& [name, table] : _tables)
+    if (name == "steps.csv")
+      progress.rows = table.rows;
+    else
+      progress.tables[name] = table.rows;
+  return progress;
 }
 
 void ResultsWriter::write_fields(
@@ -323,22 +347,27 @@ void ResultsWriter::write_fields(
 }
 
 
-void ResultsWriter::append_step(const nlohmann::json& row)
+void ResultsWriter::append_step(const nlohmann::json& row) { append_rows("steps.csv", {row}); }
+
+void ResultsWriter::append_rows(const std::string& file_name,
+                                const std::vector<nlohmann::json>& rows)
 {
   TimedStage timing("output");
-  ++_rows;
-  if (!_root)
+  Table& table = _tables[file_name];
+  table.rows += rows.size();
+  if (!_root || rows.empty())
     return;
   std::ostringstream out;
-  if (_columns.empty())
+  if (table.columns.empty())
   {
-    _columns = keys(row);
-    out << units_line(_columns, _units);
-    write_csv_header(out, _columns);
+    table.columns = keys(rows.front());
+    out << units_line(table.columns, _units);
+    write_csv_header(out, table.columns);
   }
-  write_csv_row(out, _columns, row);
-  _csv += out.str();
-  replace_file(_folder / "steps.csv", [&](std::ostream& file) { file << _csv; });
+  for (const auto& row : rows)
+    write_csv_row(out, table.columns, row);
+  table.text += out.str();
+  replace_file(_folder / file_name, [&](std::ostream& file) { file << table.text; });
 }
 
 void ResultsWriter::write_table(const std::string& file_name,

@@ -15,6 +15,7 @@
 #include <array>
 #include <dolfinx/mesh/MeshTags.h>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -122,8 +123,9 @@ struct ResultsProgress
 {
   int field_steps = 0; ///< steps of fields.xdmf
   int rows = 0;        ///< rows of steps.csv
+  std::map<std::string, int> tables; ///< rows of the other tables grown by append_rows
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ResultsProgress, field_steps, rows)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(ResultsProgress, field_steps, rows, tables)
 
 /// Writes one run's results into one folder.
 ///
@@ -134,8 +136,9 @@ class ResultsWriter
 public:
   /// Creates `folder` and starts its field series (fields.xdmf, fields/) on `mesh`; or, given
   /// `keep` (a restart), continues the results there after the first keep->field_steps steps
-  /// of fields.xdmf and keep->rows rows of steps.csv, removing what was written beyond them
-  /// (per-step files step_<k> with k > keep->rows included). Throws std::runtime_error when
+  /// of fields.xdmf and keep->rows rows of steps.csv (and keep->tables' rows of the tables
+  /// append_rows grows), removing what was written beyond them (per-step files step_<k> with
+  /// k > keep->rows included). Throws std::runtime_error when
   /// the folder holds less. Quantities are written in `units` (units.h). Collective.
   ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
                 std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
@@ -151,6 +154,10 @@ public:
   /// comment line with each column's unit, units_line); the file is replaced by its new
   /// version, so it always holds whole rows.
   void append_step(const nlohmann::json& row);
+
+  /// Append rows to the table folder/file_name (columns and units as steps.csv's), which a
+  /// restart continues as it does steps.csv: a table that grows with the path.
+  void append_rows(const std::string& file_name, const std::vector<nlohmann::json>& rows);
 
   /// Write a whole table (columns and units as steps.csv's) to folder/file_name.
   void write_table(const std::string& file_name, const std::vector<nlohmann::json>& rows);
@@ -171,19 +178,27 @@ public:
   const std::filesystem::path& folder() const { return _folder; }
   /// Steps of fields.xdmf and rows of steps.csv written so far (those kept on a restart
   /// included).
-  ResultsProgress progress() const { return {_fields.size(), _rows}; }
+  ResultsProgress progress() const;
 
 private:
-  /// Keep the header and the first `rows` rows of steps.csv (none: no file) and remove the
-  /// per-step files beyond them (rank 0). Throws when steps.csv has fewer rows. Collective.
+  /// Keep the header and the first `rows` rows of the table file_name (none: no file; rank 0).
+  /// Throws when it has fewer rows. Collective.
+  void continue_table(const std::string& file_name, int rows);
+  /// The same for steps.csv, and remove the per-step files beyond its rows (rank 0).
   void continue_steps(int rows);
+
+  /// A table that grows by rows: its text so far (rank 0) and its number of rows
+  struct Table
+  {
+    std::vector<std::string> columns;
+    std::string text;
+    int rows = 0;
+  };
 
   MPI_Comm _comm;
   std::filesystem::path _folder;
   FieldSeries _fields;
-  std::vector<std::string> _columns;
-  std::string _csv; ///< steps.csv as written so far
-  int _rows = 0;    ///< its rows
+  std::map<std::string, Table> _tables; ///< steps.csv and those of append_rows
   bool _root;
   Units _units;
 };

@@ -138,8 +138,8 @@ public:
   /// `keep` (a restart), continues the results there after the first keep->field_steps steps
   /// of fields.xdmf and keep->rows rows of steps.csv (and keep->tables' rows of the tables
   /// append_rows grows), removing what was written beyond them (per-step files step_<k> with
-  /// k > keep->rows included). Throws std::runtime_error when
-  /// the folder holds less. Quantities are written in `units` (units.h). Collective.
+  /// k > keep->rows included). Throws std::runtime_error when the folder holds less.
+  /// Quantities are written in `units` (units.h). Collective.
   ResultsWriter(MPI_Comm comm, const std::filesystem::path& folder,
                 std::shared_ptr<const dolfinx::mesh::Mesh> mesh,
                 std::optional<ResultsProgress> keep = std::nullopt,
@@ -176,8 +176,8 @@ public:
                      const Parameters& parameters, nlohmann::json quantities);
 
   const std::filesystem::path& folder() const { return _folder; }
-  /// Steps of fields.xdmf and rows of steps.csv written so far (those kept on a restart
-  /// included).
+  /// Steps of fields.xdmf and rows of steps.csv and of the other tables written so far
+  /// (those kept on a restart included).
   ResultsProgress progress() const;
 
 private:

@@ -4,10 +4,9 @@ shorter strip: --length 10 --nx 20 --slabs 5).
 The run designs the prestretch (stretch and direction per slab, both layers: 20 parameters) of
 a 10 x 1 x 1 bilayer strip so that it curls into a helix of radius R = 3 and pitch P = 6 (a
 sixth of a turn: enough to fix R and P, as the README's 20 mm strip, a third of a turn, does),
-and reads the
-helix off the deformed centreline (the bistrip's detector: mean curvature kappa and twist tau
-over the middle 80 % of the strip, R = kappa/(kappa^2 + tau^2), P = 2 pi |tau|/(kappa^2 +
-tau^2)). Checked against the closed form, the target R and P:
+and reads the helix off the deformed centreline (the bistrip's detector: mean curvature kappa
+and twist tau over the middle 80 % of the strip, R = kappa/(kappa^2 + tau^2),
+P = 2 pi |tau|/(kappa^2 + tau^2)). Checked against the closed form, the target R and P:
 - the detector on the target placement itself gives R and P to 5e-3 (the placement is built
   from the helix's rotation in closed form; the detector's central differences on samples
   ds = 0.25 apart err by ~(omega ds)^2/6 = 1.7e-3 on a frame turning at omega = 0.32 /mm;

@@ -130,7 +130,7 @@ PressedPyramid::PressedPyramid(MPI_Comm comm, const PyramidGeometry& geometry,
                        *kernels.det_F, {{"w", _w}}, {}, _mesh.mesh));
   _problem = std::make_unique<NonlinearProblem>(
       _w, form(kernels.residual, {W}), form(kernels.tangent, {W, W}), _bcs->bcs(), det_F);
-  _problem->set_pressure_mass(form(kernels.pressure_mass, {W, W}));
+  _problem->set_schur_preconditioner(form(kernels.pressure_mass, {W, W}));
   // The eighth's diagonal plane x = y is a mirror plane too, but not axis-aligned: slip on it
   // as a multipoint constraint (its slaves are x or y components, so the contact's z stays
   // free)

@@ -1,11 +1,15 @@
 """Cost of the swelling transient: the free cube (the eighth of a 2 mm cube, chi = 0.4, in pure
 solvent from lambda0 = 1.5: it swells 5.45-fold) followed past 95 % of its uptake, on
 meshes of 2 to 8 Q2-Q1 hexahedra an edge, with MUMPS; and the fieldsplit linear solver's
-Krylov iterations per Newton iteration on the first 100 s.
+Krylov iterations per Newton iteration on the first 100 s, its Schur complement preconditioned
+by PETSc's selfp and by the fixed-stress operator of forms/swelling.py (user).
 
 Per mesh: unknowns, time steps the adaptive BDF2 takes to 3e6 s, Newton iterations, wall time
 and its split, and t95, the time to 95 % of the volume change (V/V0 against a^3 of the
-isotropic energy), whose change from mesh to mesh is the mesh's error in it. Writes bench.csv.
+isotropic energy), whose change from mesh to mesh is the mesh's error in it. Then the cost of
+the transient to 95 % uptake (its steps' wall time and Newton iterations up to the step that
+passes t95) against the equilibrium solve of the same gel (--path equilibrium: the swollen
+state by load steps in mu, its steps' wall time), both without the setup. Writes bench.csv.
 
 usage: bench.py BUILD_DIR OUTPUT_DIR
 """
@@ -52,21 +56,31 @@ for cells in (2, 3, 4, 6, 8):
     t = np.array([float(r["time"]) for r in steps])
     uptake = (np.array([float(r["swelling_ratio"]) for r in steps]) - 1) / (a**3 - 1)
     split = summary["time_split"]
+    to_t95 = np.searchsorted(uptake, 0.95) + 1  # the steps up to the one that passes t95
+    eq_summary, eq_steps = run(f"equilibrium_{cells}", cells, 1, "--path", "equilibrium")
+    eq_wall = sum(float(r["wall_time"]) for r in eq_steps)
     rows.append({"cells": cells, "num_dofs": summary["num_dofs"], "steps": summary["steps"],
                  "newton_iterations": summary["newton_iterations"],
                  "wall_time": summary["wall_time"], "assembly": split["assembly"],
                  "solve": split["solve"], "t95": float(np.interp(0.95, uptake, t)),
-                 "final_uptake": uptake[-1]})
+                 "final_uptake": uptake[-1],
+                 "newton_to_t95": sum(int(r["newton_iterations"]) for r in steps[:to_t95]),
+                 "wall_to_t95": sum(float(r["wall_time"]) for r in steps[:to_t95]),
+                 "equilibrium_newton": eq_summary["newton_iterations"],
+                 "equilibrium_wall": eq_wall,
+                 "equilibrium_swelling_ratio": eq_summary["swelling_ratio"]})
 
 split_rows = []
-for cells in (2, 3, 4):
-    summary, steps = run(f"fieldsplit_{cells}", cells, 100, "-swelling_linear_solver",
-                         "fieldsplit", "-swelling_fieldsplit_u_pc_type", "lu",
-                         "-swelling_fieldsplit_p_pc_type", "hypre")
-    newton = sum(int(r["newton_iterations"]) for r in steps)
-    split_rows.append({"cells": cells, "num_dofs": summary["num_dofs"],
-                       "krylov_per_newton": sum(int(r["linear_iterations"]) for r in steps)
-                       / newton, "wall_time": summary["wall_time"]})
+for schur in ("selfp", "user"):
+    for cells in (2, 3, 4):
+        summary, steps = run(f"fieldsplit_{schur}_{cells}", cells, 100, "-swelling_linear_solver",
+                             "fieldsplit", "-swelling_fieldsplit_u_pc_type", "lu",
+                             "-swelling_fieldsplit_p_pc_type", "hypre",
+                             "-swelling_pc_fieldsplit_schur_precondition", schur)
+        newton = sum(int(r["newton_iterations"]) for r in steps)
+        split_rows.append({"schur": schur, "cells": cells, "num_dofs": summary["num_dofs"],
+                           "krylov_per_newton": sum(int(r["linear_iterations"]) for r in steps)
+                           / newton, "wall_time": summary["wall_time"]})
 
 out.mkdir(parents=True, exist_ok=True)
 with open(out / "bench.csv", "w", newline="") as f:
@@ -79,8 +93,15 @@ for r in rows:
     print(f"{r['cells']:5d} {r['num_dofs']:6d} {r['steps']:6d} {r['newton_iterations']:7d} "
           f"{r['wall_time']:9.1f} {r['assembly']:9.1f} {r['solve']:6.1f} {r['t95']:10.4g} "
           f"{r['final_uptake']:10.4f}")
-print("fieldsplit (LU on u, BoomerAMG on the selfp Schur complement), first 100 s:")
+print("the transient to 95 % uptake against the equilibrium solve of the same gel:")
+print("cells  newton to t95  wall to t95 [s]  equilibrium: newton  wall [s]  V/V0   ratio")
+for r in rows:
+    print(f"{r['cells']:5d} {r['newton_to_t95']:14d} {r['wall_to_t95']:16.2f} "
+          f"{r['equilibrium_newton']:20d} {r['equilibrium_wall']:9.2f} "
+          f"{r['equilibrium_swelling_ratio']:.4f} {r['wall_to_t95'] / r['equilibrium_wall']:6.1f}")
+print("fieldsplit (LU on u, BoomerAMG on the Schur complement's preconditioner: selfp, or the "
+      "fixed-stress operator, user), first 100 s:")
 for r in split_rows:
-    print(f"{r['cells']:5d} {r['num_dofs']:6d}  {r['krylov_per_newton']:.1f} Krylov iterations "
-          f"per Newton iteration, {r['wall_time']:.1f} s")
+    print(f"{r['schur']:>6} {r['cells']:5d} {r['num_dofs']:6d}  {r['krylov_per_newton']:.1f} "
+          f"Krylov iterations per Newton iteration, {r['wall_time']:.1f} s")
 print(f"wrote {out / 'bench.csv'}")

@@ -6,6 +6,7 @@
 //   ./gelx run swelling --sides free --W 1 --nx 4 --nz 4 --end_time 1e8   (a free cube)
 //   ./gelx run swelling --sides free --shape ellipsoid --W 1 --nx 4 --nz 4 --end_time 1e8
 //                                                                  (a free sphere)
+//   ./gelx run swelling --path equilibrium            (the state it tends to, without time)
 //
 // A layer of thickness H of the Flory-Rehner gel (thesis Eq. 4.28) in the coupled theory of
 // solvent diffusion and large deformation of Hong, Zhao, Zhou and Suo (forms/swelling.py:
@@ -23,7 +24,9 @@
 // layer's thickness and its swelling ratio V/V0 (the solvent taken up: polymer and solvent
 // are incompressible), and writes displacement, chemical potential and Cauchy stress to
 // fields.xdmf at --outputs times spaced evenly in log t; it checkpoints every
-// --checkpoint_every steps and continues exactly with --restart.
+// --checkpoint_every steps and continues exactly with --restart. With --path equilibrium it
+// solves instead for the state the transient tends to: the solvent at mu throughout, by load
+// steps in mu from mu0 (the cost the transient's is measured against).
 
 #include "swelling.h"
 
@@ -33,12 +36,14 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <numeric>
 #include <string>
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/utils.h>
 #include <gelx/io/mesh.h>
 #include <gelx/io/program.h>
 #include <gelx/solvers/dynamics.h>
+#include <gelx/solvers/load_stepping.h>
 #include <gelx/solvers/transient.h>
 #include <gelx/systems/boundary.h>
 #include <gelx/systems/forms.h>
@@ -58,15 +63,16 @@ struct Kernels
 {
   const char *w, *w_dot;
   ufcx_function_space* (*space)(const char*);
-  ufcx_form *residual, *tangent, *volume;
+  ufcx_form *residual, *tangent, *schur_preconditioner, *volume;
   ufcx_expression *stress, *swelling_ratio, *margin;
 };
 #define SWELLING_KERNELS(element)                                                              \
   {#element,                                                                                   \
    {"w_" #element, "w_dot_" #element, functionspace_form_swelling_residual_##element,          \
     form_swelling_residual_##element, form_swelling_tangent_##element,                         \
-    form_swelling_volume_##element, expression_swelling_stress_##element,                      \
-    expression_swelling_swelling_ratio_##element, expression_swelling_margin_##element}}
+    form_swelling_schur_preconditioner_##element, form_swelling_volume_##element,              \
+    expression_swelling_stress_##element, expression_swelling_swelling_ratio_##element,        \
+    expression_swelling_margin_##element}}
 const std::map<std::string, Kernels> kernels = {SWELLING_KERNELS(q2q1), SWELLING_KERNELS(q1q1)};
 #undef SWELLING_KERNELS
 
@@ -88,6 +94,7 @@ struct Layer
   double ramp_time = 1.0;   // its smooth step from mu0 (s)
   double end_time = 3000.0; // s
   int outputs = 20;         // field outputs, evenly in log t
+  std::string path = "transient"; // or the equilibrium the transient tends to
 };
 } // namespace
 
@@ -95,6 +102,7 @@ int main(int argc, char* argv[])
 {
   // 1. Scene parameters, with their defaults and validity checks
   Layer p;
+  gelx::LoadSteppingOptions stepping; // of --path equilibrium
   gelx::Parameters prm;
   using P = gelx::Parameters;
   prm.bind("geometry", "H", p.H, "thickness of the layer in the reference state [mm]",
@@ -136,11 +144,17 @@ int main(int argc, char* argv[])
            "time of the smooth step from mu0 to mu [s] (a jump at t = 0 is no transient the "
            "time steps' error estimate accepts at any size)",
            P::positive);
+  prm.bind("time", "path", p.path,
+           "transient: the solvent diffuses in, to --end_time; equilibrium: the state it tends "
+           "to, the solvent at --mu throughout, by load steps in mu from mu0 (no time: D, "
+           "--end_time and --ramp_time play no part)",
+           P::one_of({"transient", "equilibrium"}));
   prm.bind("time", "end_time", p.end_time, "time the transient is followed to [s]",
            P::positive);
   prm.bind("output", "outputs", p.outputs,
            "field outputs, evenly spaced in log t from the first step to the end (1: the end)",
            P::at_least_one);
+  stepping.bind(prm);
 
   return gelx::run_program(argc, argv, "gelx-swelling", prm, [&](gelx::Run& run)
   {
@@ -245,15 +259,21 @@ int main(int argc, char* argv[])
       surface_mu->x()->set(mu0 + gelx::smooth_step(t, p.ramp_time) * (p.mu - mu0));
     };
     set_time(0);
+    // --path equilibrium: mu prescribed at every node, not only where the solvent is, so
+    // that the conservation rows drop out and time with them (w_dot stays 0, shift 0)
+    const bool equilibrium = p.path == "equilibrium";
+    if (equilibrium)
+    {
+      const auto cells = geo.mesh->topology().index_map(3);
+      std::vector<std::int32_t> all(cells->size_local() + cells->num_ghosts());
+      std::iota(all.begin(), all.end(), 0);
+      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(
+          surface_mu,
+          fem::locate_dofs_topological({*M, *surface_mu->function_space()}, 3, all), M));
+    }
     gelx::NonlinearProblem problem(w, forms.form(k.residual, {W}), forms.form(k.tangent, {W, W}),
                                    bcs, forms.expression(k.margin));
-    // TS's error tolerance: 1e-4 of the change of mu (a number of order 1e-2, in kT), which
-    // in mm is a finer one for the displacements (of order H (lambda - 1)); the user's win
-    char atol[32];
-    std::snprintf(atol, sizeof atol, "%.6g", 1e-4 * std::abs(p.mu - mu0));
-    gelx::set_default_options("swelling_", {{"ts_rtol", "1e-4"}, {"ts_atol", atol}});
-    gelx::TransientProblem transient(run.comm(), problem, w_dot, forms.constant("shift"),
-                                     set_time, p.end_time, "swelling_");
+    problem.set_schur_preconditioner(forms.form(k.schur_preconditioner, {W, W}), true);
 
     // 5. Output: displacement and chemical potential at the nodes, stress per cell
     gelx::ResultsWriter& results = run.results(geo.mesh);
@@ -301,18 +321,69 @@ int main(int argc, char* argv[])
                    {"mu0", mu0},
                    {"phi0", phi0}};
 
-    // 6. The transient; fields at the times t1 (T/t1)^(k/(outputs - 1)), k = 0 ... outputs - 1,
+    // 6a. The equilibrium: mu from mu0 to the solvent's by load steps, mu = mu0 + s (mu - mu0)
+    //     for the load factor s; fields after every step
+    const auto mu_at = [&](double s) { return mu0 + s * (p.mu - mu0); };
+    gelx::ProgressLine progress(
+        run.comm(), {.load_name = equilibrium ? "mu" : "t",
+                     .load = [&](const gelx::StepRecord& s) { return mu_at(s.load); },
+                     .quantity = [&]
+                     { return gelx::quantity_text("thickness", run.summary["thickness"]); }});
+    if (equilibrium)
+    {
+      gelx::NewtonSolver newton(run.comm(), "swelling_");
+      newton.bind(problem);
+      gelx::PathState path = run.start_path(problem);
+      gelx::LoadStepper(problem, newton, stepping,
+                        [&](double s) { surface_mu->x()->set(mu_at(s)); })
+          .run(path,
+               {[&](const gelx::StepRecord& s, gelx::PathState& state)
+                {
+                  gelx::copy_sub_function(*w, 0, *u);
+                  gelx::copy_sub_function(*w, 1, *mu);
+                  for (const auto& [key, count] :
+                       {std::pair{"newton_iterations", s.newton.iterations},
+                        std::pair{"linear_iterations", s.newton.linear_iterations}})
+                    state.scene[key] = state.scene.value(key, 0) + count;
+                  const double mu_s = mu_at(s.load);
+                  const nlohmann::json quantities
+                      = {{"thickness", thickness()},
+                         {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0}};
+                  results.write_fields(mu_s, fields.update());
+                  nlohmann::json row = {{"step", s.step},
+                                        {"mu", mu_s},
+                                        {"newton_iterations", s.newton.iterations},
+                                        {"linear_iterations", s.newton.linear_iterations},
+                                        {"cutbacks", s.cutbacks},
+                                        {"wall_time", s.wall_time}};
+                  row.update(quantities);
+                  results.append_step(row);
+                  run.summary.update(quantities);
+                  run.summary.update({{"steps", s.step},
+                                      {"newton_iterations", state.scene["newton_iterations"]},
+                                      {"linear_iterations", state.scene["linear_iterations"]}});
+                },
+                progress, run.checkpoints()});
+      return;
+    }
+
+    // 6b. The transient; fields at the times t1 (T/t1)^(k/(outputs - 1)), k = 0 ... outputs - 1,
     //    evenly spaced in log t from the first step's t1 to the end T (one output: T). A
     //    checkpoint after a step (--checkpoint_every) holds w, TSBDF's history and this
     //    record's state, so that --restart continues the run as if never stopped
+    //    TS's error tolerance: 1e-4 of the change of mu (a number of order 1e-2, in kT), which
+    //    in mm is a finer one for the displacements (of order H (lambda - 1)); the user's win
+    char atol[32];
+    std::snprintf(atol, sizeof atol, "%.6g", 1e-4 * std::abs(p.mu - mu0));
+    gelx::set_default_options("swelling_", {{"ts_rtol", "1e-4"}, {"ts_atol", atol}});
+    gelx::TransientProblem transient(run.comm(), problem, w_dot, forms.constant("shift"),
+                                     set_time, p.end_time, "swelling_");
     const gelx::PathState start = run.start_path(problem);
     const gelx::StepObserver checkpoints = run.checkpoints();
     double first_time = start.scene.value("first_time", 0.0);
     int outputs_written = start.scene.value("outputs_written", 0);
     int newton_iterations = start.scene.value("newton_iterations", 0);
-    gelx::ProgressLine progress(
-        run.comm(), {.quantity = [&]
-                     { return gelx::quantity_text("thickness", run.summary["thickness"]); }});
+    int linear_iterations = start.scene.value("linear_iterations", 0);
     const auto output_time = [&](int k)
     {
       return p.outputs == 1 ? p.end_time
@@ -328,6 +399,7 @@ int main(int argc, char* argv[])
           gelx::copy_sub_function(*w, 0, *u);
           gelx::copy_sub_function(*w, 1, *mu);
           newton_iterations += s.step.newton.iterations;
+          linear_iterations += s.step.newton.linear_iterations;
           const nlohmann::json quantities
               = {{"thickness", thickness()},
                  {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0},
@@ -348,7 +420,9 @@ int main(int argc, char* argv[])
               ++outputs_written;
           }
           run.summary.update(quantities);
-          run.summary.update({{"time", t}, {"newton_iterations", newton_iterations}});
+          run.summary.update({{"time", t},
+                              {"newton_iterations", newton_iterations},
+                              {"linear_iterations", linear_iterations}});
           // how far, in log t (the transient spans decades)
           progress.print(s.step, t,
                          t < p.end_time ? std::log(t / first_time)
@@ -358,7 +432,8 @@ int main(int argc, char* argv[])
           transient.save(state);
           state.scene = {{"first_time", first_time},
                          {"outputs_written", outputs_written},
-                         {"newton_iterations", newton_iterations}};
+                         {"newton_iterations", newton_iterations},
+                         {"linear_iterations", linear_iterations}};
           checkpoints(s.step, state);
         },
         start.step > 0 ? &start : nullptr);

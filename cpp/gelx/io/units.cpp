@@ -67,7 +67,7 @@ const std::map<std::string, Dimension>& dimensions()
       {"asphericity", D::none}, {"alpha_par", D::none}, {"alpha_perp", D::none},
       {"alpha_perp_y", D::none}, {"anisotropy", D::none}, {"theory_alpha0", D::none},
       {"theory_uniaxial_alpha_perp", D::none}, {"max_shear_macro", D::none},
-      {"min_J_minus_phi0", D::none}, {"chemical_potential", D::none}, {"mu0", D::none},
+      {"min_J_minus_phi0", D::none}, {"chemical_potential", D::none}, {"mu", D::none}, {"mu0", D::none},
       {"phi0", D::none},
       {"thickness", D::length}, {"front_depth", D::length}, {"phi_i", D::none}, {"phi_f", D::none},
       {"slenderness", D::none}, {"area_ratio", D::none},

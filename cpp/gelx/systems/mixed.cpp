@@ -80,6 +80,63 @@ reaction_force(const NonlinearProblem& problem, const dolfinx::fem::FunctionSpac
   return global;
 }
 
+namespace
+{
+/// The matrix that preconditions a fieldsplit solver's Schur complement: the block of the
+/// problem's form schur_preconditioner() on the rows `is_p` of `system`'s unknowns, assembled
+/// once, or after every tangent when the form follows the state.
+class SchurPreconditioner
+{
+public:
+  SchurPreconditioner(NonlinearSystem& system, IS is_p)
+      : _system(system), _form(system.problem().schur_preconditioner()), _is_p(is_p)
+  {
+    GELX_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(_is_p)));
+    _full = dolfinx::fem::petsc::create_matrix(*_form);
+    assemble(MAT_INITIAL_MATRIX);
+    if (system.problem().schur_preconditioner_follows_state())
+    {
+      _update = std::make_shared<std::function<void()>>([this] { assemble(MAT_REUSE_MATRIX); });
+      system.problem().after_tangent(_update);
+    }
+  }
+  ~SchurPreconditioner()
+  {
+    MatDestroy(&_full);
+    MatDestroy(&_block);
+    ISDestroy(&_is_p);
+  }
+  SchurPreconditioner(const SchurPreconditioner&) = delete;
+  SchurPreconditioner& operator=(const SchurPreconditioner&) = delete;
+  Mat matrix() const { return _block; }
+
+private:
+  void assemble(MatReuse reuse)
+  {
+    // Prescribed rows as in the tangent (its Schur complement's are the identity's)
+    const auto& bcs = _system.problem().bcs();
+    GELX_PETSC(MatZeroEntries(_full));
+    dolfinx::fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(_full, ADD_VALUES),
+                                  *_form, bcs);
+    GELX_PETSC(MatAssemblyBegin(_full, MAT_FLUSH_ASSEMBLY));
+    GELX_PETSC(MatAssemblyEnd(_full, MAT_FLUSH_ASSEMBLY));
+    dolfinx::fem::set_diagonal(dolfinx::la::petsc::Matrix::set_fn(_full, INSERT_VALUES),
+                               *_form->function_spaces()[0], bcs);
+    GELX_PETSC(MatAssemblyBegin(_full, MAT_FINAL_ASSEMBLY));
+    GELX_PETSC(MatAssemblyEnd(_full, MAT_FINAL_ASSEMBLY));
+    Mat unknowns = _system.restrict_operator(_full);
+    GELX_PETSC(MatCreateSubMatrix(unknowns, _is_p, _is_p, reuse, &_block));
+    MatDestroy(&unknowns);
+  }
+
+  NonlinearSystem& _system;
+  std::shared_ptr<const dolfinx::fem::Form<double>> _form;
+  IS _is_p;
+  Mat _full = nullptr, _block = nullptr;
+  std::shared_ptr<std::function<void()>> _update;
+};
+} // namespace
+
 void define_displacement_pressure_fields(PC pc, NonlinearSystem& system)
 {
   const auto& W = *system.problem().u()->function_space();
@@ -159,30 +216,35 @@ void define_displacement_pressure_fields(PC pc, NonlinearSystem& system)
   GELX_PETSC(PCFieldSplitSetIS(pc, "p", is_p));
 
   // The Schur complement's preconditioner, on request (-PREFIX_pc_fieldsplit_schur_precondition
-  // user): the pressure mass over G of the problem. It is spectrally equivalent to the Schur
-  // complement only for an inf-sup stable pair (Q2-Q1, P2-P1); for Q1-P0 the spurious pressure
-  // modes make it worse than the default selfp (measured on the pyramid, 3 cells, d/H = 0.006:
-  // 184 against 132 Krylov iterations per Newton iteration)
+  // user): the sub-space 1 block of the problem's form schur_preconditioner(). The pressure mass
+  // over G of a nearly incompressible solid is spectrally equivalent to the Schur complement
+  // only for an inf-sup stable pair (Q2-Q1, P2-P1); for Q1-P0 the spurious pressure modes make
+  // it worse than the default selfp (measured on the pyramid, 3 cells, d/H = 0.006: 184 against
+  // 132 Krylov iterations per Newton iteration)
   const char* prefix = nullptr;
   GELX_PETSC(PCGetOptionsPrefix(pc, &prefix));
-  const auto mass_form = system.problem().pressure_mass();
   if (string_option(prefix ? prefix : "", "pc_fieldsplit_schur_precondition", "") == "user")
   {
-    if (!mass_form)
+    if (!system.problem().schur_preconditioner())
       throw InputError("-" + std::string(prefix ? prefix : "")
-                       + "pc_fieldsplit_schur_precondition user: this scene has no pressure mass");
-    Mat M = dolfinx::fem::petsc::create_matrix(*mass_form);
-    GELX_PETSC(MatZeroEntries(M));
-    dolfinx::fem::assemble_matrix(dolfinx::la::petsc::Matrix::set_block_fn(M, ADD_VALUES),
-                                  *mass_form, {});
-    GELX_PETSC(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
-    GELX_PETSC(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
-    Mat M_unknowns = system.restrict_operator(M);
-    Mat M_pp;
-    GELX_PETSC(MatCreateSubMatrix(M_unknowns, is_p, is_p, MAT_INITIAL_MATRIX, &M_pp));
-    GELX_PETSC(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, M_pp));
-    for (Mat* m : {&M, &M_unknowns, &M_pp})
-      MatDestroy(m);
+                       + "pc_fieldsplit_schur_precondition user: this scene has no form for it");
+    auto schur = std::make_unique<SchurPreconditioner>(system, is_p);
+    GELX_PETSC(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, schur->matrix()));
+    // The PC owns it: while the PC lives, a form that follows the state is assembled again
+    // after every tangent, so that the matrix the PC is set up with is the tangent's
+    PetscContainer owner;
+    GELX_PETSC(PetscContainerCreate(comm, &owner));
+    GELX_PETSC(PetscContainerSetPointer(owner, schur.release()));
+    GELX_PETSC(PetscContainerSetUserDestroy(owner,
+                                            [](void* p) -> PetscErrorCode
+                                            {
+                                              delete static_cast<SchurPreconditioner*>(p);
+                                              return 0;
+                                            }));
+    GELX_PETSC(PetscObjectCompose(reinterpret_cast<PetscObject>(pc),
+                                  "gelx_schur_preconditioner",
+                                  reinterpret_cast<PetscObject>(owner)));
+    GELX_PETSC(PetscContainerDestroy(&owner));
   }
   for (Vec& v : modes)
     VecDestroy(&v);

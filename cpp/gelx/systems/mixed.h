@@ -37,7 +37,9 @@ reaction_force(const NonlinearProblem& problem, const dolfinx::fem::FunctionSpac
 /// of `system`'s tangent, whose base problem lives on a mixed space (sub-space 0 the
 /// displacement, 1 the pressure): the index sets of their unknowns in system's layout (through
 /// unknown_of_problem_dof, so a constrained space works too), and on `u` the rigid-body modes
-/// as its near-nullspace, which PCFIELDSPLIT hands to the displacement block's matrix (GAMG).
+/// as its near-nullspace, which PCFIELDSPLIT hands to the displacement block's matrix (GAMG);
+/// with -PREFIX_pc_fieldsplit_schur_precondition user, the Schur complement's preconditioner
+/// from the problem's schur_preconditioner() form (problem.h), which the PC owns.
 /// Throws InputError when the space is not mixed or some unknown is neither (a macro unknown,
 /// an arc-length load factor). Collective.
 void define_displacement_pressure_fields(PC pc, NonlinearSystem& system);

@@ -214,6 +214,9 @@ void NonlinearProblem::tangent(Mat A)
                              *_J->function_spaces()[0], _bcs);
   GELX_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
   GELX_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  std::erase_if(_after_tangent, [](const auto& update) { return update.expired(); });
+  for (const auto& update : _after_tangent)
+    (*update.lock())();
 }
 
 double NonlinearProblem::admissibility_margin() const

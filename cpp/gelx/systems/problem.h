@@ -10,6 +10,7 @@
 #include <dolfinx/fem/Function.h>
 #include <array>
 #include <dolfinx/mesh/MeshTags.h>
+#include <functional>
 #include <memory>
 #include <petscmat.h>
 #include <petscvec.h>
@@ -73,21 +74,36 @@ public:
   std::shared_ptr<dolfinx::fem::Function<double>> u() const { return _u; }
   const BCs& bcs() const { return _bcs; }
 
-  /// For a mixed displacement-pressure problem: the bilinear form -1/G int p q dX on its space
-  /// (forms/_mixed.py, pressure_mass), whose pressure block preconditions the Schur complement
-  /// of the fieldsplit linear solver (define_displacement_pressure_fields, mixed.h).
-  void set_pressure_mass(std::shared_ptr<const dolfinx::fem::Form<double>> form)
+  /// For a mixed problem (sub-space 1 a pressure, or a gel's chemical potential): a bilinear
+  /// form on its space whose block of sub-space 1 preconditions the Schur complement of the
+  /// fieldsplit linear solver (-PREFIX_pc_fieldsplit_schur_precondition user;
+  /// define_displacement_pressure_fields, mixed.h): -1/G int p q dX for a nearly
+  /// incompressible solid (forms/_mixed.py, pressure_mass), the fixed-stress operator for a
+  /// swelling gel (forms/swelling.py). `follows_state`: the form depends on the state or on a
+  /// solver's constant (TS's shift), so it is assembled again after every tangent().
+  void set_schur_preconditioner(std::shared_ptr<const dolfinx::fem::Form<double>> form,
+                                bool follows_state = false)
   {
-    _pressure_mass = std::move(form);
+    _schur_preconditioner = std::move(form);
+    _schur_preconditioner_follows_state = follows_state;
   }
-  std::shared_ptr<const dolfinx::fem::Form<double>> pressure_mass() const
+  std::shared_ptr<const dolfinx::fem::Form<double>> schur_preconditioner() const
   {
-    return _pressure_mass;
+    return _schur_preconditioner;
+  }
+  bool schur_preconditioner_follows_state() const { return _schur_preconditioner_follows_state; }
+  /// Call `update` after every tangent(), at the state the tangent was assembled at, for as
+  /// long as it lives (a solver's preconditioner that follows the state: mixed.cpp).
+  void after_tangent(std::weak_ptr<std::function<void()>> update)
+  {
+    _after_tangent.push_back(std::move(update));
   }
 
 private:
   std::shared_ptr<dolfinx::fem::Function<double>> _u;
-  std::shared_ptr<const dolfinx::fem::Form<double>> _R, _J, _pressure_mass;
+  std::shared_ptr<const dolfinx::fem::Form<double>> _R, _J, _schur_preconditioner;
+  bool _schur_preconditioner_follows_state = false;
+  std::vector<std::weak_ptr<std::function<void()>>> _after_tangent;
   BCs _bcs;
   std::shared_ptr<const dolfinx::fem::Expression<double>> _admissibility;
   bool _lifting; ///< -dirichlet_lifting (see the class comment)

@@ -173,14 +173,8 @@ int main(int argc, char* argv[])
                     {"strain_energy", gelx::assemble_global_scalar(*energy)},
                     {"min_det_F", problem.admissibility_margin()}};
                 results.write_fields(s.load, fields.update());
-                nlohmann::json row = {{"step", s.step},
-                                      {"t", s.load},
-                                      {"newton_iterations", s.newton.iterations},
-                                      {"newton_residual", s.newton.residual},
-                                      {"newton_residual0", s.newton.residual0},
-                                      {"linear_iterations", s.newton.linear_iterations},
-                                      {"cutbacks", s.cutbacks},
-                                      {"wall_time", s.wall_time}};
+                nlohmann::json row = gelx::step_columns(s);
+                row["t"] = s.load;
                 row.update(quantities);
                 results.append_step(row);
                 run.summary.update(quantities);

@@ -126,17 +126,13 @@ int main(int argc, char* argv[])
                     = state.scene.value("newton_iterations", 0) + step.newton.iterations;
                 const double T = gel.T_i + step.load * (gel.T_f - gel.T_i);
                 results.write_fields(T, fields.update());
-                results.append_step({{"step", step.step},
-                                     {"T", T},
-                                     {"alpha_par", c.alpha_z},
-                                     {"alpha_perp", c.alpha_x},
-                                     {"alpha_perp_y", c.alpha_y},
-                                     {"anisotropy", c.alpha_z / c.alpha_x},
-                                     {"newton_iterations", step.newton.iterations},
-                                     {"newton_residual", step.newton.residual},
-                                     {"newton_residual0", step.newton.residual0},
-                                     {"cutbacks", step.cutbacks},
-                                     {"wall_time", step.wall_time}});
+                nlohmann::json row = gelx::step_columns(step);
+                row.update({{"T", T},
+                            {"alpha_par", c.alpha_z},
+                            {"alpha_perp", c.alpha_x},
+                            {"alpha_perp_y", c.alpha_y},
+                            {"anisotropy", c.alpha_z / c.alpha_x}});
+                results.append_step(row);
 
                 // 4. Contraction ratios at the last temperature reached
                 run.summary.update({{"alpha_par", c.alpha_z},

@@ -215,8 +215,8 @@ int main(int argc, char* argv[])
           std::snprintf(stl, sizeof(stl), "surface/step_%03d.stl", step.step);
           results.write_stl(stl, pyramid.contact_side_surface(*fields.nodal("displacement")));
           const double area_ratio = c.width > 0 ? c.area / (c.width * c.width) : 0;
-          results.append_step({{"step", step.step},
-                               {"d_over_H", d},
+          nlohmann::json row = gelx::step_columns(step);
+          row.update({{"d_over_H", d},
                                {"force", c.force},
                                {"strain_energy", pyramid.strain_energy()},
                                {"contact_width_over_L", c.width / g.L},
@@ -225,13 +225,8 @@ int main(int argc, char* argv[])
                                {"area_over_width_squared", area_ratio},
                                {"active_nodes", c.active},
                                {"max_penetration", c.penetration},
-                               {"newton_iterations", step.newton.iterations},
-                               {"linear_iterations", step.newton.linear_iterations},
-                               {"newton_residual", step.newton.residual},
-                               {"newton_residual0", step.newton.residual0},
-                               {"cutbacks", step.cutbacks},
-                               {"wall_time", step.wall_time},
                                {"elapsed", run.elapsed()}});
+          results.append_step(row);
           run.summary.update({{"final_d_over_H", d},
                               {"final_force", c.force},
                               {"final_contact_width_over_L", c.width / g.L},

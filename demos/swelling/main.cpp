@@ -350,12 +350,8 @@ int main(int argc, char* argv[])
                       = {{"thickness", thickness()},
                          {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0}};
                   results.write_fields(mu_s, fields.update());
-                  nlohmann::json row = {{"step", s.step},
-                                        {"mu", mu_s},
-                                        {"newton_iterations", s.newton.iterations},
-                                        {"linear_iterations", s.newton.linear_iterations},
-                                        {"cutbacks", s.cutbacks},
-                                        {"wall_time", s.wall_time}};
+                  nlohmann::json row = gelx::step_columns(s);
+                  row["mu"] = mu_s;
                   row.update(quantities);
                   results.append_step(row);
                   run.summary.update(quantities);

@@ -77,6 +77,20 @@ struct StepRecord
   bool bifurcation = false;
 };
 
+/// The columns every path's steps.csv shares: the step's number, its Newton solve (iterations,
+/// linear iterations, final and first residual), cut-backs and wall time. A scene adds its
+/// load and quantities.
+inline nlohmann::json step_columns(const StepRecord& s)
+{
+  return {{"step", s.step},
+          {"newton_iterations", s.newton.iterations},
+          {"linear_iterations", s.newton.linear_iterations},
+          {"newton_residual", s.newton.residual},
+          {"newton_residual0", s.newton.residual0},
+          {"cutbacks", s.cutbacks},
+          {"wall_time", s.wall_time}};
+}
+
 /// Sees every completed step with the path's state after it (write output there: a step
 /// reported is complete; keep what must survive a restart in state.scene).
 using StepObserver = std::function<void(const StepRecord&, PathState&)>;

@@ -39,9 +39,8 @@ Mat NonlinearSystem::restrict_operator(Mat A) const
   Vec x = create_vector();
   require_problem_layout(*this, x);
   GELX_PETSC(VecDestroy(&x));
-  Mat copy;
-  GELX_PETSC(MatDuplicate(A, MAT_COPY_VALUES, &copy));
-  return copy;
+  GELX_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(A)));
+  return A;
 }
 
 void NonlinearSystem::restrict_vector(Vec f, Vec r) const

@@ -96,9 +96,11 @@ public:
 
   /// A bilinear operator A of the problem's space (a mass matrix, assembled in the pattern of
   /// problem().create_matrix()) as an operator on this system's unknowns, in the pattern of
-  /// create_matrix(): a copy where the unknowns are the problem's dofs, P^T A P on a reduced
-  /// space (MultipointConstraint). Layouts with unknowns of their own (the arc-length
-  /// bordering) have no such operator and throw. Collective.
+  /// create_matrix(): A itself, a new reference, where the unknowns are the problem's dofs
+  /// (no copy: a caller that changes the result while it still uses A must duplicate it),
+  /// P^T A P on a reduced space (MultipointConstraint). The caller destroys the result.
+  /// Layouts with unknowns of their own (the arc-length bordering) have no such operator and
+  /// throw. Collective.
   virtual Mat restrict_operator(Mat A) const;
   /// The same for vectors. restrict_vector: a linear form f on the problem's dofs (forces,
   /// the derivative of an objective) as one on this system's unknowns, r = P^T f (a copy where

@@ -9,7 +9,12 @@ and its split, and t95, the time to 95 % of the volume change (V/V0 against a^3 
 isotropic energy), whose change from mesh to mesh is the mesh's error in it. Then the cost of
 the transient to 95 % uptake (its steps' wall time and Newton iterations up to the step that
 passes t95) against the equilibrium solve of the same gel (--path equilibrium: the swollen
-state by load steps in mu, its steps' wall time), both without the setup. Writes bench.csv.
+state by load steps in mu, its steps' wall time), both without the setup. Then, on 3 cells,
+the time integrator's accuracy against its cost: BDF of order 2 and 4, TS tolerances rtol
+1e-4 and 1e-3, Newton's tolerance per step 1e-3 (the default) and PETSc's 1e-8; the error is
+the largest difference of the uptake at the steps from that of a reference run (order 3,
+rtol 1e-6), interpolated monotonically in log t, as a fraction of the final uptake. Writes
+bench.csv.
 
 usage: bench.py BUILD_DIR OUTPUT_DIR
 """
@@ -21,6 +26,7 @@ import subprocess
 import sys
 
 import numpy as np
+from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
 build, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
@@ -50,11 +56,16 @@ def run(name, cells, end_time, *options):
     return json.loads((folder / "summary.json").read_text()), steps
 
 
+def uptake_history(steps):
+    """Times and uptake (V - V0 as a fraction of the equilibrium's) of a run's steps."""
+    t = np.array([float(r["time"]) for r in steps])
+    return t, (np.array([float(r["swelling_ratio"]) for r in steps]) - 1) / (a**3 - 1)
+
+
 rows = []
 for cells in (2, 3, 4, 6, 8):
     summary, steps = run(f"cube_{cells}", cells, 3e6)
-    t = np.array([float(r["time"]) for r in steps])
-    uptake = (np.array([float(r["swelling_ratio"]) for r in steps]) - 1) / (a**3 - 1)
+    t, uptake = uptake_history(steps)
     split = summary["time_split"]
     to_t95 = np.searchsorted(uptake, 0.95) + 1  # the steps up to the one that passes t95
     eq_summary, eq_steps = run(f"equilibrium_{cells}", cells, 1, "--path", "equilibrium")
@@ -82,6 +93,34 @@ for schur in ("selfp", "user"):
                            "krylov_per_newton": sum(int(r["linear_iterations"]) for r in steps)
                            / newton, "wall_time": summary["wall_time"]})
 
+
+# TS's atol as the scene sets it, rtol |mu - mu0| (mu = 0, pure solvent)
+atol_per_rtol = abs(json.loads((out / "cube_2" / "summary.json").read_text())["mu0"])
+_, reference_steps = run("integrator_reference", 3, 3e6, "-swelling_ts_bdf_order", "3",
+                         "-swelling_ts_rtol", "1e-6", "-swelling_ts_atol",
+                         str(1e-6 * atol_per_rtol))
+t_ref, uptake_ref = uptake_history(reference_steps)
+reference = PchipInterpolator(np.log(t_ref), uptake_ref)
+integrator_rows = []
+for order in (2, 4):
+    for rtol in (1e-4, 1e-3):
+        for snes_rtol in (1e-3, 1e-8):
+            name = f"integrator_bdf{order}_rtol{rtol:g}_snes{snes_rtol:g}"
+            summary, steps = run(name, 3, 3e6, "-swelling_ts_bdf_order", str(order),
+                                 "-swelling_ts_rtol", str(rtol), "-swelling_ts_atol",
+                                 str(rtol * atol_per_rtol), "-swelling_snes_rtol",
+                                 str(snes_rtol))
+            t, uptake = uptake_history(steps)
+            inside = (t > t_ref[0]) & (t <= t_ref[-1])
+            to_t95 = np.searchsorted(uptake, 0.95) + 1
+            integrator_rows.append(
+                {"order": order, "rtol": rtol, "snes_rtol": snes_rtol,
+                 "steps_to_t95": int(to_t95),
+                 "newton_to_t95": sum(int(r["newton_iterations"]) for r in steps[:to_t95]),
+                 "wall_to_t95": sum(float(r["wall_time"]) for r in steps[:to_t95]),
+                 "uptake_error": float(np.max(np.abs(uptake[inside]
+                                                     - reference(np.log(t[inside])))))})
+
 out.mkdir(parents=True, exist_ok=True)
 with open(out / "bench.csv", "w", newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(rows[0]))
@@ -104,4 +143,10 @@ print("fieldsplit (LU on u, BoomerAMG on the Schur complement's preconditioner: 
 for r in split_rows:
     print(f"{r['schur']:>6} {r['cells']:5d} {r['num_dofs']:6d}  {r['krylov_per_newton']:.1f} "
           f"Krylov iterations per Newton iteration, {r['wall_time']:.1f} s")
+print("the time integrator on 3 cells, to t95 (uptake error: largest, of the final uptake, "
+      "against order 3 at rtol 1e-6):")
+print("order   rtol  snes_rtol  steps  newton  wall [s]  uptake error")
+for r in integrator_rows:
+    print(f"{r['order']:5d} {r['rtol']:6g} {r['snes_rtol']:10g} {r['steps_to_t95']:6d} "
+          f"{r['newton_to_t95']:7d} {r['wall_to_t95']:9.2f} {r['uptake_error']:13.2e}")
 print(f"wrote {out / 'bench.csv'}")

@@ -39,6 +39,13 @@ TransientProblem::TransientProblem(MPI_Comm comm, NonlinearProblem& problem,
 {
   set_time_stepping_defaults(prefix, "bdf", end_time, 0, 1e-6 * end_time);
   set_default_option(prefix, "ts_bdf_order", "2");
+  // Newton's tolerance a fraction of the step's error, not of machine precision: TSBDF's
+  // predictor (the extrapolated history) is off by about the local error the adaptivity keeps
+  // below ts_rtol, so a residual 1e-3 of the predictor's leaves an error 1e-3 of that (CVODE
+  // asks 0.1 of it). One Newton iteration a step mostly reaches it where PETSc's 1e-8 took
+  // two; the swelling cube's uptake moves by 8e-7 of itself, a thousandth of BDF2's error at
+  // rtol 1e-4 (demos/swelling/README, Speed)
+  set_default_option(prefix, "snes_rtol", "1e-3");
   _jacobian = problem.create_matrix();
   GELX_PETSC(TSCreate(comm, &_ts));
   GELX_PETSC(TSSetOptionsPrefix(_ts, prefix.c_str()));

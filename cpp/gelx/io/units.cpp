@@ -67,9 +67,10 @@ const std::map<std::string, Dimension>& dimensions()
       {"asphericity", D::none}, {"alpha_par", D::none}, {"alpha_perp", D::none},
       {"alpha_perp_y", D::none}, {"anisotropy", D::none}, {"theory_alpha0", D::none},
       {"theory_uniaxial_alpha_perp", D::none}, {"max_shear_macro", D::none},
-      {"min_J_minus_phi0", D::none}, {"chemical_potential", D::none}, {"mu", D::none}, {"mu0", D::none},
-      {"phi0", D::none},
+      {"min_J_minus_phi0", D::none}, {"chemical_potential", D::none}, {"mu", D::none},
+      {"mu0", D::none}, {"phi0", D::none}, {"chi", D::none}, {"chi0", D::none},
       {"thickness", D::length}, {"front_depth", D::length}, {"phi_i", D::none}, {"phi_f", D::none},
+      {"valley_depth", D::length}, {"fold_gap", D::length},
       {"slenderness", D::none}, {"area_ratio", D::none},
       // Inverse design: the distance to the target, the helix asked for and formed, the cost
       {"rms_distance", D::length}, {"rms_distance_start", D::length},
@@ -117,7 +118,8 @@ const std::map<std::string, Dimension>& dimensions()
       // Labels and flags
       {"verdict", D::text}, {"scheme", D::text}, {"mass", D::text}, {"outcome", D::text},
       {"quasi_static", D::text}, {"settled", D::text}, {"limit_point", D::text},
-      {"bifurcation", D::text}, {"origin", D::text}, {"guess", D::text}, {"strip", D::text},
+      {"bifurcation", D::text}, {"fold", D::text}, {"unstable", D::text},
+      {"self_contact", D::text}, {"origin", D::text}, {"guess", D::text}, {"strip", D::text},
       {"site", D::text}, {"newton_snes_type", D::text}, {"csv", D::text},
       {"fig4_3b_peo", D::text},
       // The run's cost

@@ -1,0 +1,280 @@
+// gelx scene: crease — a gel layer bonded to a rigid substrate swells until its surface folds
+//
+// Sample runs:
+//   ./gelx run crease
+//   ./gelx run crease --nx 80 --nz 40 --imperfection 0.002
+//   ./gelx run crease --chi_end 0.3 -arclength_ds_max 2
+//
+// The Flory-Rehner gel of forms/swelling.py (thesis Eq. 4.28) in a plane-strain slab
+// 0 <= x <= W, 0 <= z <= H of a wide layer, one Q2-Q1 hexahedron thick in y between rollers
+// (the chemical potential is prescribed at every node, so its Q1 field only carries the load).
+// The reference state is the gel swollen freely to the stretch lambda0 from dry, in pure
+// solvent (mu = 0) at chi = chi_free(phi0), stress-free; in that state it was bonded to the
+// substrate at z = 0. Lowering chi (a temperature change through chi(T)) makes the gel take
+// up more solvent, slowly: the solvent is at equilibrium, mu = 0 throughout, at every chi (the
+// drained limit, no time). The substrate holds the layer laterally, so it swells in thickness
+// only and its surface is compressed: flat at first, it folds into a crease at a swelling
+// ratio h/H that Hong, Zhao and Suo (APL 95, 111901, 2009) put at 2.4 for an incompressible
+// network (Biot's wrinkling instability of the flat surface: 3.4).
+//
+// A crease is a subcritical instability: the flat state stays stable past the threshold, and
+// the fold nucleates at a defect. The slab's surface has one: a dip of depth imperfection H
+// and width imperfection_width H at x = 0, a plane of symmetry (the slab is half of a period
+// 2W of creases). chi is the load of an arc-length continuation (gelx::ArcLength), which
+// follows the path through the limit point where the fold snaps in, and the inertia of each
+// tangent counts the unstable modes. The run records per point the far-field swelling ratio
+// h/H (at x = W), the valley's depth below it, and the gap between the surface and the plane
+// x = 0, which closes when the fold's flanks meet: there the path stops (going on needs the
+// surface's contact with that plane).
+
+#include "swelling.h"
+
+#include <gelx/common/collectives.h>
+#include <gelx/common/petsc_utils.h>
+#include <gelx/io/mesh.h>
+#include <gelx/io/program.h>
+#include <gelx/io/progress.h>
+#include <gelx/solvers/arclength.h>
+#include <gelx/systems/boundary.h>
+#include <gelx/systems/forms.h>
+#include <gelx/systems/mixed.h>
+#include <gelx/systems/problem.h>
+#include <theory/flory_rehner.h>
+
+#include <cmath>
+#include <cstdio>
+#include <dolfinx/common/MPI.h>
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/utils.h>
+#include <numeric>
+
+using namespace dolfinx;
+
+namespace
+{
+/// The scene's parameters.
+struct Slab
+{
+  double H = 1.0, W = 1.0; // thickness of the layer and width of the slab (mm)
+  double imperfection = 1e-3;      // the dip's depth at x = 0, a fraction of H
+  double imperfection_width = 0.1; // its Gaussian half-width, a fraction of H
+  int nx = 20, nz = 10;            // hexahedra across the width and through the thickness
+  double grading = 2; // cells shrink towards the fold (x = 0) and the surface (z = H)
+  double n = 1e-3;    // N nu: the network's stiffness in kT/nu
+  double lambda0 = 1.2;  // the reference state's stretch from dry
+  double chi_end = 0.4;  // chi lowered to this
+  double kT_nu = 137.0;  // kT / nu (MPa): water at 298 K, nu = 3e-29 m^3
+  int max_steps = 300;
+};
+
+/// Where the surface z = H is, from its nodes (all ranks): the far field's height (at x = W),
+/// the valley's (at x = 0) and the smallest x of a surface node off the plane x = 0.
+struct Surface
+{
+  double far = 0, valley = 0, gap = 0;
+};
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  // 1. Scene parameters, with their defaults and validity checks
+  Slab p;
+  gelx::Parameters prm;
+  using P = gelx::Parameters;
+  prm.bind("geometry", "H", p.H, "thickness of the layer in the reference state [mm]",
+           P::positive);
+  prm.bind("geometry", "W", p.W, "width of the slab, half the creases' period [mm]",
+           P::positive);
+  prm.bind("geometry", "imperfection", p.imperfection,
+           "depth of the surface's dip at x = 0, a fraction of H (the defect the crease "
+           "nucleates at)",
+           [](double v) { return v >= 0 && v < 0.5 ? "" : "must be in [0, 0.5)"; });
+  prm.bind("geometry", "imperfection_width", p.imperfection_width,
+           "the dip's Gaussian half-width, a fraction of H", P::positive);
+  prm.bind("mesh", "nx", p.nx, "hexahedra across the width", P::at_least_one);
+  prm.bind("mesh", "nz", p.nz, "hexahedra through the thickness", P::at_least_one);
+  prm.bind("mesh", "grading", p.grading,
+           "cells shrink towards x = 0 and z = H: x = W s^grading, z = H (1 - (1 - s)^grading) "
+           "for s evenly spaced in [0, 1] (1: even)",
+           [](double v) { return v >= 1 ? "" : "must be at least 1"; });
+  prm.bind("material", "n", p.n, "N nu: the network's stiffness in units of kT/nu",
+           P::positive);
+  prm.bind("material", "lambda0", p.lambda0,
+           "stretch of the stress-free reference state from dry (> 1: phi0 = lambda0^-3)",
+           [](double v) { return v > 1 ? "" : "must exceed 1 (the dry state is singular)"; });
+  prm.bind("material", "kT_nu", p.kT_nu, "energy scale kT/nu [MPa]", P::positive);
+  prm.bind("load", "chi_end", p.chi_end,
+           "Flory's chi is lowered from chi_free(phi0), the reference state's, to this");
+  prm.bind("continuation", "max_steps", p.max_steps, "largest number of arc-length steps",
+           P::at_least_one);
+
+  return gelx::run_program(argc, argv, "gelx-crease", prm, [&](gelx::Run& run)
+  {
+    const double phi0 = std::pow(p.lambda0, -3.0);
+    const double chi0 = gelx::theory::chi_free(phi0, p.n);
+    if (!(p.chi_end < chi0))
+      throw gelx::InputError("--chi_end " + std::to_string(p.chi_end)
+                             + " is not below chi_free(phi0) = " + std::to_string(chi0)
+                             + ", the reference state's: the layer would not swell");
+
+    // 2. The slab W x (one cell) x H, graded towards the fold and the surface, with the dip
+    const gelx::TaggedMesh geo = gelx::box_mesh(
+        run.comm(), {p.W, p.W / p.nx, p.H}, {std::size_t(p.nx), 1, std::size_t(p.nz)},
+        mesh::CellType::hexahedron);
+    std::span<double> X = geo.mesh->geometry().x();
+    for (std::size_t i = 0; i < X.size(); i += 3)
+    {
+      const double s = X[i] / p.W, z = X[i + 2] / p.H;
+      X[i] = p.W * std::pow(s, p.grading);
+      const double dip = p.imperfection * std::exp(-std::pow(X[i] / (p.imperfection_width * p.H), 2));
+      X[i + 2] = p.H * (1 - std::pow(1 - z, p.grading)) * (1 - dip);
+    }
+
+    // 3. The (u, mu) space of forms/swelling.py, at rest in the reference state (mu = 0)
+    auto V = std::make_shared<fem::FunctionSpace>(
+        fem::create_functionspace(functionspace_form_swelling_residual_q2q1, "w_q2q1", geo.mesh));
+    auto w = std::make_shared<fem::Function<double>>(V);
+    auto w_dot = std::make_shared<fem::Function<double>>(V); // stays 0: no time
+    gelx::FormBinding forms(geo.mesh, {{"w_q2q1", w}, {"w_dot_q2q1", w_dot}},
+                            {{"n", p.n}, {"phi0", phi0}, {"chi", chi0}, {"kT_nu", p.kT_nu},
+                             {"D", 1.0}, {"shift", 0.0}});
+    auto U = V->sub({0});
+    auto M = V->sub({1});
+
+    // 4. Bonded at z = 0, rollers on x = 0 (the fold's plane of symmetry), x = W and the faces
+    //    of y; mu = 0 at every node (pure solvent, in equilibrium throughout)
+    gelx::DirichletConditions supports(U, geo.facet_tags);
+    supports.clamp(geo.tag("z_min"));
+    supports.fix(geo.tag("x_min"), 0);
+    supports.fix(geo.tag("x_max"), 0);
+    supports.fix(geo.tag("y_min"), 1);
+    supports.fix(geo.tag("y_max"), 1);
+    auto bcs = supports.bcs();
+    auto pure_solvent = std::make_shared<fem::Function<double>>(
+        std::make_shared<fem::FunctionSpace>(M->collapse().first));
+    const auto cells = geo.mesh->topology().index_map(3);
+    std::vector<std::int32_t> all_cells(cells->size_local() + cells->num_ghosts());
+    std::iota(all_cells.begin(), all_cells.end(), 0);
+    bcs.push_back(std::make_shared<fem::DirichletBC<double>>(
+        pure_solvent,
+        fem::locate_dofs_topological({*M, *pure_solvent->function_space()}, 3, all_cells), M));
+    gelx::NonlinearProblem problem(w, forms.form(form_swelling_residual_q2q1, {V}),
+                                   forms.form(form_swelling_tangent_q2q1, {V, V}), bcs,
+                                   forms.expression(expression_swelling_margin_q2q1));
+    const auto chi_at = [&](double l) { return chi0 + l * (p.chi_end - chi0); };
+    const auto set_load = [&](double l) { forms.set("chi", chi_at(l)); };
+
+    // 5. The surface's nodes: reference coordinates of the displacement's dofs on z = H
+    auto u = gelx::collapse_sub_function(*w, 0);
+    const std::vector<double> nodes = u->function_space()->tabulate_dof_coordinates(false);
+    const std::vector<std::int32_t> surface_nodes = fem::locate_dofs_topological(
+        *u->function_space(), 2, geo.facet_tags->find(geo.tag("z_max")));
+    const double tolerance = 1e-9 * p.W;
+    const auto surface = [&]
+    {
+      const std::span<const double> d = u->x()->array();
+      const std::int32_t owned = u->function_space()->dofmap()->index_map->size_local();
+      double far = -INFINITY, valley = -INFINITY, gap = INFINITY;
+      for (std::int32_t i : surface_nodes)
+      {
+        if (i >= owned)
+          continue;
+        const double x = nodes[3 * i] + d[3 * i], z = nodes[3 * i + 2] + d[3 * i + 2];
+        if (nodes[3 * i] > p.W - tolerance)
+          far = z;
+        else if (nodes[3 * i] < tolerance)
+          valley = z;
+        else
+          gap = std::min(gap, x);
+      }
+      double local[3] = {far, valley, -gap}, global[3];
+      MPI_Allreduce(local, global, 3, MPI_DOUBLE, MPI_MAX, run.comm());
+      return Surface{global[0], global[1], -global[2]};
+    };
+
+    // 6. Output: displacement per node, stress and local swelling ratio J per cell
+    gelx::ResultsWriter& results = run.results(geo.mesh);
+    gelx::FieldSet fields;
+    fields.add("displacement", u);
+    fields.add("cauchy_stress", forms.expression(expression_swelling_stress_q2q1));
+    fields.add("swelling_ratio", forms.expression(expression_swelling_swelling_ratio_q2q1));
+    run.summary = {{"num_dofs", V->dofmap()->index_map->size_global()
+                                    * V->dofmap()->index_map_bs()},
+                   {"phi0", phi0},
+                   {"chi0", chi0}};
+
+    // 7. The path: chi lowered by arc-length continuation. The arc length is measured in the
+    //    2-norm of the dofs, where a displacement H at every dof has the length
+    //    scale = H sqrt(dofs), and chi's load factor (0 to 1) weighted by psi = scale: steps
+    //    from scale / 200 to scale / 20 (the whole path, h from H to about 4 H, is a few
+    //    scales long). The corrector's tolerance |R| <= 1e-7 |dR/dlambda| (the residual of a
+    //    change of chi by 1e-7 of its range): at the fold's tip the gel is squeezed towards
+    //    its dry volume (J -> phi0, where the mixing energy's stiffness diverges) and round-off
+    //    leaves residuals of 1e-9 |dR/dlambda| that no Newton iteration reduces (measured on
+    //    40 x 20 cells: 15 iterations oscillating there at every step down to 1e-6 of the
+    //    path's scale, where 1e-9 stopped the path). Every point's unstable modes from the
+    //    tangent's inertia (its LDL^T factorisation, which the predictor makes anyway)
+    const double scale = p.H * std::sqrt(double(run.summary["num_dofs"]));
+    const auto text = [](double v) { return std::to_string(v); };
+    gelx::set_default_options("arclength_", {{"ds", text(scale / 200)},
+                                             {"ds_max", text(scale / 20)},
+                                             {"psi", text(scale)},
+                                             {"rtol", "1e-7"},
+                                             {"stability", "inertia"}});
+    gelx::ArcLength continuation(run.comm(), problem, set_load);
+    gelx::PathState path = run.start_path(problem);
+    gelx::copy_sub_function(*w, 0, *u); // a restarted run's last point, for the stop test
+    Surface last = surface();
+    continuation.run(
+        path, p.max_steps,
+        {[&](const gelx::StepRecord& pt, gelx::PathState& state)
+         {
+           gelx::copy_sub_function(*w, 0, *u);
+           last = surface();
+           const nlohmann::json quantities
+               = {{"chi", chi_at(pt.load)},
+                  {"swelling_ratio", last.far / p.H},
+                  {"valley_depth", last.far - last.valley},
+                  {"fold_gap", last.gap},
+                  {"negative_eigenvalues", pt.negative_eigenvalues}};
+           results.write_fields(pt.step, fields.update());
+           nlohmann::json row = gelx::step_columns(pt);
+           row.update({{"arc_length", pt.arc_length}, {"limit_point", pt.limit_point}});
+           row.update(quantities);
+           results.append_step(row);
+           // The fold: where the path first turns back in chi (the snap), and where the
+           // tangent first has a negative eigenvalue
+           if (pt.limit_point && !state.scene.contains("fold"))
+             state.scene["fold"] = quantities;
+           if (pt.negative_eigenvalues > 0 && !state.scene.contains("unstable"))
+             state.scene["unstable"] = quantities;
+           for (const char* event : {"fold", "unstable"})
+             if (state.scene.contains(event))
+               run.summary[event] = state.scene[event];
+           run.summary.update(quantities);
+           run.summary["steps"] = pt.step;
+         },
+         gelx::ProgressLine(run.comm(),
+                            {.load_name = "chi",
+                             .load = [&](const gelx::StepRecord& s) { return chi_at(s.load); },
+                             .quantity = [&] {
+                               return gelx::quantity_text("h/H", last.far / p.H);
+                             },
+                             // chi turns back at the fold: no estimate of the time left
+                             .fraction = [](const gelx::StepRecord&) { return NAN; }}),
+         run.checkpoints()},
+        [&](const gelx::StepRecord& pt)
+        {
+          if (last.gap > 0)
+            return pt.load >= 1;
+          if (dolfinx::MPI::rank(run.comm()) == 0)
+            std::printf("gelx-crease: the fold's flanks meet the plane x = 0 at step %d "
+                        "(chi = %.6g, h/H = %.6g); the path stops here: going on needs the "
+                        "surface's contact with that plane\n",
+                        pt.step, chi_at(pt.load), last.far / p.H);
+          run.summary["self_contact"] = {{"chi", chi_at(pt.load)},
+                                         {"swelling_ratio", last.far / p.H}};
+          return true;
+        });
+  });
+}

@@ -57,6 +57,23 @@ TimedStage::TimedStage(const std::string& name) { GELX_PETSC(PetscLogStagePush(s
 
 TimedStage::~TimedStage() { PetscLogStagePop(); }
 
+NestedSolves::NestedSolves()
+{
+  for (std::size_t i = 0; i < _events.size(); ++i)
+  {
+    GELX_PETSC(PetscLogEventGetId(i == 0 ? "KSPSolve" : "PCSetUp", &_events[i]));
+    if (_events[i] >= 0)
+      GELX_PETSC(PetscLogEventDeactivatePush(_events[i]));
+  }
+}
+
+NestedSolves::~NestedSolves()
+{
+  for (PetscLogEvent event : _events)
+    if (event >= 0)
+      PetscLogEventDeactivatePop(event);
+}
+
 void start_timing() { GELX_PETSC(PetscLogDefaultBegin()); }
 
 nlohmann::json time_split(MPI_Comm comm, double wall_time)

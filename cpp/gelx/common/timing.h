@@ -5,6 +5,7 @@
 /// work PETSc does not see (meshing, output, stability counts). PETSc's log is used, not
 /// timers of our own, so that `-log_view` shows the same split in full detail.
 
+#include <array>
 #include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <petsclog.h>
@@ -23,6 +24,21 @@ public:
   ~TimedStage();
   TimedStage(const TimedStage&) = delete;
   TimedStage& operator=(const TimedStage&) = delete;
+};
+
+/// While alive, PETSc does not log KSPSolve and PCSetUp: for solves nested in a solve whose
+/// events already time them (the arc-length system's solves with its wrapped tangent, inside
+/// the bordered system's KSPSolve), which time_split would otherwise count twice.
+class NestedSolves
+{
+public:
+  NestedSolves();
+  ~NestedSolves();
+  NestedSolves(const NestedSolves&) = delete;
+  NestedSolves& operator=(const NestedSolves&) = delete;
+
+private:
+  std::array<PetscLogEvent, 2> _events;
 };
 
 /// Start PETSc's default event log (what -log_view turns on): called once, after

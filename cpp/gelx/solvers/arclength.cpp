@@ -1,4 +1,6 @@
 #include <gelx/solvers/arclength.h>
+
+#include <gelx/common/timing.h>
 #include <gelx/systems/mixed.h>
 #include <gelx/io/parameters.h>
 #include <gelx/common/petsc_utils.h>
@@ -242,7 +244,10 @@ void ArcLengthSystem::tangent(Mat)
   GELX_PETSC(VecScale(_g, 1.0 / _ds));
   _g_l = _psi * _psi * (_lambda - _l0) / _ds;
   load_derivative(_f);
-  solve_tangent(_f, _b);
+  // K is factorised, and b = K^-1 f solved, at the first apply_inverse: inside the bordered
+  // system's KSPSolve, which times it as solving, not inside the tangent's evaluation
+  _inner.tangent(_K);
+  _factorised = false;
 }
 
 void ArcLengthSystem::apply_tangent(Vec v, Vec y) const
@@ -255,12 +260,23 @@ void ArcLengthSystem::apply_tangent(Vec v, Vec y) const
 
 void ArcLengthSystem::apply_inverse(Vec r, Vec z) const
 {
+  const NestedSolves nested; // the bordered KSPSolve around this call times them
+  const auto solve = [this](Vec rhs, Vec y)
+  {
+    GELX_PETSC(KSPSolve(_ksp, rhs, y));
+    KSPConvergedReason reason;
+    GELX_PETSC(KSPGetConvergedReason(_ksp, &reason));
+    if (reason < 0)
+      throw ConvergenceError("K^-1 failed");
+  };
+  if (!_factorised)
+  {
+    GELX_PETSC(KSPSetOperators(_ksp, _K, _K));
+    solve(_f, _b);
+    _factorised = true;
+  }
   const double r_l = split(r, _work);
-  GELX_PETSC(KSPSolve(_ksp, _work, _work2)); // a = K^-1 r_x
-  KSPConvergedReason reason;
-  GELX_PETSC(KSPGetConvergedReason(_ksp, &reason));
-  if (reason < 0)
-    throw ConvergenceError("K^-1 failed");
+  solve(_work, _work2); // a = K^-1 r_x
   const double d_l = (r_l - dot(_g, _work2)) / (_g_l - dot(_g, _b));
   GELX_PETSC(VecAXPY(_work2, -d_l, _b));
   join(_work2, d_l, z);

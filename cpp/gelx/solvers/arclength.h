@@ -55,8 +55,9 @@ public:
   /// Passes x to the wrapped system and lambda to set_load.
   void unknowns_changed() override;
   void residual(Vec r) override;
-  /// Assembles K, f and the constraint's gradient and factorises K; A (from create_matrix)
-  /// applies the bordered tangent.
+  /// Assembles K, f and the constraint's gradient (K is factorised at the first application
+  /// of the inverse, where the bordered KSPSolve times it); A (from create_matrix) applies
+  /// the bordered tangent.
   void tangent(Mat A) override;
   Vec create_vector() const override;
   Mat create_matrix() const override;
@@ -109,6 +110,7 @@ private:
   Mat _K = nullptr;
   KSP _ksp = nullptr;
   Vec _f = nullptr, _b = nullptr, _work = nullptr, _work2 = nullptr;
+  mutable bool _factorised = false; ///< K of the last tangent() factorised, b solved
 };
 
 /// Follows the path R(x, lambda) = 0 by pseudo-arc-length continuation: per step a tangent

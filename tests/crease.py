@@ -10,7 +10,7 @@ its surface) against what holds whatever the fold's details:
    solved here by bisection at each point's chi. Q2 represents the homogeneous state exactly;
    what remains is the dip's reach to x = W = H, which grows with the valley's depth. While
    the surface is nearly flat (the valley at most twice the dip's depth), h/H within 1e-4 of
-   l (measured worst 1.8e-5 on the test's 12 x 6 cells; 7.8e-4 at the fold).
+   l (measured worst 1.46e-5 on the test's 12 x 6 cells; 7.8e-4 at the fold).
 2. The limit point: the path turns back in chi where the tangent becomes singular, so the
    first negative eigenvalue of the tangent (its inertia) appears within one step of the
    first limit point (a regular limit point; a bifurcation would show an eigenvalue crossing

@@ -44,9 +44,7 @@
 #include <cmath>
 #include <cstdio>
 #include <dolfinx/common/MPI.h>
-#include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/utils.h>
-#include <numeric>
 
 using namespace dolfinx;
 
@@ -152,12 +150,7 @@ int main(int argc, char* argv[])
     auto bcs = supports.bcs();
     auto pure_solvent = std::make_shared<fem::Function<double>>(
         std::make_shared<fem::FunctionSpace>(M->collapse().first));
-    const auto cells = geo.mesh->topology().index_map(3);
-    std::vector<std::int32_t> all_cells(cells->size_local() + cells->num_ghosts());
-    std::iota(all_cells.begin(), all_cells.end(), 0);
-    bcs.push_back(std::make_shared<fem::DirichletBC<double>>(
-        pure_solvent,
-        fem::locate_dofs_topological({*M, *pure_solvent->function_space()}, 3, all_cells), M));
+    bcs.push_back(gelx::prescribe_sub_every_node(M, pure_solvent));
     gelx::NonlinearProblem problem(w, forms.form(form_swelling_residual_q2q1, {V}),
                                    forms.form(form_swelling_tangent_q2q1, {V, V}), bcs,
                                    forms.expression(expression_swelling_margin_q2q1));

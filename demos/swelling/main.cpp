@@ -36,9 +36,7 @@
 #include <cstdio>
 #include <functional>
 #include <map>
-#include <numeric>
 #include <string>
-#include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/utils.h>
 #include <gelx/io/mesh.h>
 #include <gelx/io/program.h>
@@ -248,11 +246,7 @@ int main(int argc, char* argv[])
         std::make_shared<fem::FunctionSpace>(std::move(M_collapsed)));
     auto bcs = supports.bcs();
     for (int face : in_solvent)
-      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(
-          surface_mu,
-          fem::locate_dofs_topological({*M, *surface_mu->function_space()}, 2,
-                                       geo.facet_tags->find(face)),
-          M));
+      bcs.push_back(gelx::prescribe_sub(M, surface_mu, geo.facet_tags->find(face)));
     const int surface = geo.tag("z_max");
     const auto set_time = [&](double t)
     {
@@ -263,14 +257,7 @@ int main(int argc, char* argv[])
     // that the conservation rows drop out and time with them (w_dot stays 0, shift 0)
     const bool equilibrium = p.path == "equilibrium";
     if (equilibrium)
-    {
-      const auto cells = geo.mesh->topology().index_map(3);
-      std::vector<std::int32_t> all(cells->size_local() + cells->num_ghosts());
-      std::iota(all.begin(), all.end(), 0);
-      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(
-          surface_mu,
-          fem::locate_dofs_topological({*M, *surface_mu->function_space()}, 3, all), M));
-    }
+      bcs.push_back(gelx::prescribe_sub_every_node(M, surface_mu));
     gelx::NonlinearProblem problem(w, forms.form(k.residual, {W}), forms.form(k.tangent, {W, W}),
                                    bcs, forms.expression(k.margin));
     problem.set_schur_preconditioner(forms.form(k.schur_preconditioner, {W, W}), true);
@@ -363,8 +350,7 @@ int main(int argc, char* argv[])
       return;
     }
 
-    // 6b. The transient; fields at the times t1 (T/t1)^(k/(outputs - 1)), k = 0 ... outputs - 1,
-    //    evenly spaced in log t from the first step's t1 to the end T (one output: T). A
+    // 6b. The transient; fields at times evenly spaced in log t (gelx::LogTimeOutputs). A
     //    checkpoint after a step (--checkpoint_every) holds w, TSBDF's history and this
     //    record's state, so that --restart continues the run as if never stopped
     //    TS's error tolerance: 1e-4 of the change of mu (a number of order 1e-2, in kT), which
@@ -376,22 +362,13 @@ int main(int argc, char* argv[])
                                      set_time, p.end_time, "swelling_");
     const gelx::PathState start = run.start_path(problem);
     const gelx::StepObserver checkpoints = run.checkpoints();
-    double first_time = start.scene.value("first_time", 0.0);
-    int outputs_written = start.scene.value("outputs_written", 0);
+    gelx::LogTimeOutputs outputs(p.outputs, p.end_time, start.scene);
     int newton_iterations = start.scene.value("newton_iterations", 0);
     int linear_iterations = start.scene.value("linear_iterations", 0);
-    const auto output_time = [&](int k)
-    {
-      return p.outputs == 1 ? p.end_time
-                            : first_time * std::pow(p.end_time / first_time,
-                                                    double(k) / (p.outputs - 1));
-    };
     const int steps = transient.run(
         [&](const gelx::TransientStep& s)
         {
           const double t = s.time;
-          if (s.step.step == 1)
-            first_time = t;
           gelx::copy_sub_function(*w, 0, *u);
           gelx::copy_sub_function(*w, 1, *mu);
           newton_iterations += s.step.newton.iterations;
@@ -400,36 +377,21 @@ int main(int argc, char* argv[])
               = {{"thickness", thickness()},
                  {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0},
                  {"front_depth", front_depth(t)}};
-          nlohmann::json row = {{"step", s.step.step},
-                                {"time", t},
-                                {"dt", s.step.step_size},
-                                {"newton_iterations", s.step.newton.iterations},
-                                {"linear_iterations", s.step.newton.linear_iterations},
-                                {"rejected", s.step.cutbacks},
-                                {"wall_time", s.step.wall_time}};
+          nlohmann::json row = s.columns();
           row.update(quantities);
           results.append_step(row);
-          if (outputs_written < p.outputs && t >= output_time(outputs_written) * (1 - 1e-12))
-          {
+          if (outputs.due(s.step.step, t))
             results.write_fields(t, fields.update());
-            while (outputs_written < p.outputs && output_time(outputs_written) <= t * (1 + 1e-12))
-              ++outputs_written;
-          }
           run.summary.update(quantities);
           run.summary.update({{"time", t},
                               {"newton_iterations", newton_iterations},
                               {"linear_iterations", linear_iterations}});
-          // how far, in log t (the transient spans decades)
-          progress.print(s.step, t,
-                         t < p.end_time ? std::log(t / first_time)
-                                              / std::log(p.end_time / first_time)
-                                        : 1.0);
+          progress.print(s.step, t, outputs.progress(t));
           gelx::PathState state;
           transient.save(state);
-          state.scene = {{"first_time", first_time},
-                         {"outputs_written", outputs_written},
-                         {"newton_iterations", newton_iterations},
+          state.scene = {{"newton_iterations", newton_iterations},
                          {"linear_iterations", linear_iterations}};
+          outputs.save(state.scene);
           checkpoints(s.step, state);
         },
         start.step > 0 ? &start : nullptr);

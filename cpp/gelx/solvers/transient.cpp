@@ -5,6 +5,7 @@
 #include <gelx/systems/mixed.h>
 
 #include <algorithm>
+#include <cmath>
 #include <petsc/private/tsimpl.h>
 
 namespace gelx
@@ -28,12 +29,46 @@ PetscErrorCode form_jacobian(TS, PetscReal t, Vec w, Vec w_dot, PetscReal shift,
 
 } // namespace
 
-TransientProblem::TransientProblem(MPI_Comm comm, NonlinearProblem& problem,
+LogTimeOutputs::LogTimeOutputs(int count, double end_time, const nlohmann::json& scene)
+    : _count(count), _end_time(end_time), _first_time(scene.value("first_time", 0.0)),
+      _written(scene.value("outputs_written", 0))
+{
+}
+
+double LogTimeOutputs::output_time(int k) const
+{
+  return _count == 1 ? _end_time
+                     : _first_time * std::pow(_end_time / _first_time, double(k) / (_count - 1));
+}
+
+bool LogTimeOutputs::due(int step, double t)
+{
+  if (step == 1)
+    _first_time = t;
+  if (_written >= _count || t < output_time(_written) * (1 - 1e-12))
+    return false;
+  while (_written < _count && output_time(_written) <= t * (1 + 1e-12))
+    ++_written;
+  return true;
+}
+
+double LogTimeOutputs::progress(double t) const
+{
+  return t < _end_time ? std::log(t / _first_time) / std::log(_end_time / _first_time) : 1.0;
+}
+
+void LogTimeOutputs::save(nlohmann::json& scene) const
+{
+  scene["first_time"] = _first_time;
+  scene["outputs_written"] = _written;
+}
+
+TransientProblem::TransientProblem(MPI_Comm comm, NonlinearSystem& system,
                                    std::shared_ptr<dolfinx::fem::Function<double>> rate,
                                    dolfinx::fem::Constant<double>& shift,
                                    std::function<void(double)> set_time, double end_time,
                                    const std::string& prefix)
-    : _problem(problem), _rate(std::move(rate)), _shift(shift),
+    : _system(system), _rate(std::move(rate)), _shift(shift),
       _set_time(std::move(set_time)), _prefix(prefix), _end_time(end_time),
       _min_step(positive_option(prefix, "min_step", 1e-14 * end_time))
 {
@@ -46,11 +81,12 @@ TransientProblem::TransientProblem(MPI_Comm comm, NonlinearProblem& problem,
   // two; the swelling cube's uptake moves by 8e-7 of itself, a thousandth of BDF2's error at
   // rtol 1e-4 (demos/swelling/README, Speed)
   set_default_option(prefix, "snes_rtol", "1e-3");
-  _jacobian = problem.create_matrix();
+  _jacobian = system.create_matrix();
+  _problem_rate = system.problem().create_vector();
   GELX_PETSC(TSCreate(comm, &_ts));
   GELX_PETSC(TSSetOptionsPrefix(_ts, prefix.c_str()));
   GELX_PETSC(TSSetProblemType(_ts, TS_NONLINEAR));
-  Vec r = problem.create_vector();
+  Vec r = system.create_vector();
   GELX_PETSC(TSSetIFunction(_ts, r, gelx::form_function, this));
   GELX_PETSC(VecDestroy(&r));
   GELX_PETSC(TSSetIJacobian(_ts, _jacobian, _jacobian, gelx::form_jacobian, this));
@@ -66,47 +102,50 @@ TransientProblem::TransientProblem(MPI_Comm comm, NonlinearProblem& problem,
   GELX_PETSC(TSGetSNES(_ts, &snes));
   KSP ksp;
   GELX_PETSC(SNESGetKSP(snes, &ksp));
-  define_fields_if_split(ksp, problem);
+  define_fields_if_split(ksp, system);
 }
 
 TransientProblem::~TransientProblem()
 {
   TSDestroy(&_ts);
   MatDestroy(&_jacobian);
+  VecDestroy(&_problem_rate);
 }
 
-void TransientProblem::set_state(double t, Vec w, Vec w_dot)
+void TransientProblem::set_state(double t, Vec x, Vec x_dot)
 {
   _set_time(t);
-  _problem.set_state(w);
-  // The rate's owned values from TS, its ghosts from their owners
+  _system.set_state(x);
+  // The rate's owned values: TS's x' prolonged, w' = P x' (the constraints' g is constant;
+  // Dirichlet dofs are unknowns of x with their own rows), its ghosts from their owners
+  _system.prolong_vector(x_dot, _problem_rate);
   const PetscScalar* values;
   PetscInt n;
-  GELX_PETSC(VecGetLocalSize(w_dot, &n));
-  GELX_PETSC(VecGetArrayRead(w_dot, &values));
+  GELX_PETSC(VecGetLocalSize(_problem_rate, &n));
+  GELX_PETSC(VecGetArrayRead(_problem_rate, &values));
   std::copy_n(values, n, _rate->x()->mutable_array().begin());
-  GELX_PETSC(VecRestoreArrayRead(w_dot, &values));
+  GELX_PETSC(VecRestoreArrayRead(_problem_rate, &values));
   _rate->x()->scatter_fwd();
 }
 
 void TransientProblem::form_function(double t, Vec w, Vec w_dot, Vec F)
 {
   set_state(t, w, w_dot);
-  if (!_problem.admissible())
+  if (!_system.admissible())
   {
     SNES snes;
     GELX_PETSC(TSGetSNES(_ts, &snes));
     GELX_PETSC(SNESSetFunctionDomainError(snes)); // the stage fails; TS cuts the step
     return;
   }
-  _problem.residual(F);
+  _system.residual(F);
 }
 
 void TransientProblem::form_jacobian(double t, Vec w, Vec w_dot, double shift, Mat P)
 {
   set_state(t, w, w_dot);
   _shift.value = {shift};
-  _problem.tangent(P);
+  _system.tangent(P);
 }
 
 void TransientProblem::accepted(int step, double t, Vec w)
@@ -121,7 +160,7 @@ void TransientProblem::accepted(int step, double t, Vec w)
   PetscReal t_previous;
   GELX_PETSC(TSGetPrevTime(_ts, &t_previous));
   _set_time(t);
-  _problem.set_state(w);
+  _system.set_state(w);
   TransientStep record;
   record.time = t;
   record.step = accepted_step(_ts, step, t, t - t_previous, _counters);
@@ -143,8 +182,8 @@ int TransientProblem::run(const std::function<void(const TransientStep&)>& obser
 {
   _observe = &observe;
   _counters = StepCounters{};
-  OwnedVec w(_problem.create_vector());
-  GELX_PETSC(VecCopy(_problem.unknowns(), w.get()));
+  OwnedVec w(_system.create_vector());
+  GELX_PETSC(VecCopy(_system.unknowns(), w.get()));
   _skip_first_monitor = true;
   _resuming = resume != nullptr;
   if (resume)
@@ -161,7 +200,7 @@ int TransientProblem::run(const std::function<void(const TransientStep&)>& obser
   PetscInt steps;
   GELX_PETSC(TSGetTime(_ts, &t));
   GELX_PETSC(TSGetStepNumber(_ts, &steps));
-  _problem.set_state(w.get());
+  _system.set_state(w.get());
   throw_if_stopped_early(_ts, t, "the transient", _too_small_step, _prefix, _min_step, " s");
   return int(steps);
 }

@@ -25,25 +25,63 @@ struct TransientStep
 {
   StepRecord step;
   double time = 0;
+  /// Its steps.csv columns, as the dynamics scenes name them (a scene adds its quantities)
+  nlohmann::json columns() const
+  {
+    return {{"step", step.step},
+            {"time", time},
+            {"dt", step.step_size},
+            {"newton_iterations", step.newton.iterations},
+            {"linear_iterations", step.newton.linear_iterations},
+            {"rejected", step.cutbacks},
+            {"wall_time", step.wall_time}};
+  }
 };
 
-/// Integrates R(w, w'; t) = 0 from the problem's current state at t = 0 to an end time.
+/// When a transient writes its fields: at `count` times evenly spaced in log t from its first
+/// step's time t1 to the end T, t1 (T/t1)^(k/(count - 1)) for k = 0 ... count - 1 (one output:
+/// T), because a transient spans decades (a front's sqrt(t) start, the slow approach to
+/// equilibrium); and how far it has got, in log t. Its state goes into a checkpoint's scene
+/// record, so that a restarted run writes what the uninterrupted one would have.
+class LogTimeOutputs
+{
+public:
+  /// @param scene a restarted path's scene record (what save() wrote), or empty
+  LogTimeOutputs(int count, double end_time, const nlohmann::json& scene);
+  /// After the accepted step number `step` at time t: whether fields are due.
+  bool due(int step, double t);
+  /// How far the transient has got at time t, 0 to 1 in log t.
+  double progress(double t) const;
+  /// Its state into a checkpoint's scene record.
+  void save(nlohmann::json& scene) const;
+
+private:
+  double output_time(int k) const;
+  int _count;
+  double _end_time;
+  double _first_time = 0;
+  int _written = 0;
+};
+
+/// Integrates R(w, w'; t) = 0 from the system's current state at t = 0 to an end time.
 ///
-/// The problem's residual form holds the rate as the coefficient `rate` (on the problem's
-/// space), and its tangent form is dR/dw + shift dR/dw' with `shift` a constant of the form:
-/// the Jacobian of TS's implicit function, shift being TS's d(w')/dw. Its Dirichlet rows stay
-/// u - g(t): algebraic equations, with g set by `set_time(t)` before every evaluation. Options
-/// prefix `prefix` for TS, SNES and KSP; by default adaptive BDF of order 2 with first step
-/// end_time * 1e-6, steps up to end_time / 10, a direct solve (MUMPS). Why TS and not a
-/// backward-Euler form of one's own: its BDFs are L-stable and adapt the step to the
-/// transient, which spans decades (a diffusion front's sqrt(t) start, then the slow approach to
-/// equilibrium). Restart: save() puts TSBDF's history into a PathState (save_bdf_history),
-/// which a Checkpoints stores; run(observe, &state) continues from it, equal to the
-/// uninterrupted run to round-off.
+/// The system is a NonlinearProblem or a decorator of one (a MultipointConstraint: TS then
+/// integrates the reduced unknowns x, with w = P x + g and w' = P x'). The problem's residual
+/// form holds the rate as the coefficient `rate` (on the problem's space), and its tangent
+/// form is dR/dw + shift dR/dw' with `shift` a constant of the form: the Jacobian of TS's
+/// implicit function, shift being TS's d(w')/dw. Its Dirichlet rows stay u - g(t): algebraic
+/// equations, with g set by `set_time(t)` before every evaluation. Options prefix `prefix`
+/// for TS, SNES and KSP; by default adaptive BDF of order 2 with first step end_time * 1e-6,
+/// steps up to end_time / 10, a direct solve (MUMPS). Why TS and not a backward-Euler form of
+/// one's own: its BDFs are L-stable and adapt the step to the transient, which spans decades
+/// (a diffusion front's sqrt(t) start, then the slow approach to equilibrium). Restart:
+/// save() puts TSBDF's history into a PathState (save_bdf_history), which a Checkpoints
+/// stores; run(observe, &state) continues from it, equal to the uninterrupted run to
+/// round-off.
 class TransientProblem
 {
 public:
-  TransientProblem(MPI_Comm comm, NonlinearProblem& problem,
+  TransientProblem(MPI_Comm comm, NonlinearSystem& system,
                    std::shared_ptr<dolfinx::fem::Function<double>> rate,
                    dolfinx::fem::Constant<double>& shift,
                    std::function<void(double)> set_time, double end_time,
@@ -53,9 +91,9 @@ public:
   TransientProblem& operator=(const TransientProblem&) = delete;
 
   /// Run to the end time from the problem's current state at t = 0, or, with `resume`, from
-  /// the state save() wrote (the problem already at its unknowns), calling `observe` after
-  /// every accepted step with the problem at that step's state. Throws ConvergenceError when
-  /// TS gives up; the problem then holds the last accepted state. Returns the number of the
+  /// the state save() wrote (the system already at its unknowns), calling `observe` after
+  /// every accepted step with the system at that step's state. Throws ConvergenceError when
+  /// TS gives up; the system then holds the last accepted state. Returns the number of the
   /// last step.
   int run(const std::function<void(const TransientStep&)>& observe,
           const PathState* resume = nullptr);
@@ -72,11 +110,12 @@ public:
   std::exception_ptr callback_error;
 
 private:
-  /// The problem's unknowns and the rate coefficient at (t, w, w')
-  void set_state(double t, Vec w, Vec w_dot);
+  /// The system's unknowns and the rate coefficient at (t, x, x')
+  void set_state(double t, Vec x, Vec x_dot);
 
-  NonlinearProblem& _problem;
+  NonlinearSystem& _system;
   std::shared_ptr<dolfinx::fem::Function<double>> _rate;
+  Vec _problem_rate = nullptr; ///< x' prolonged to the problem's dofs
   dolfinx::fem::Constant<double>& _shift;
   std::function<void(double)> _set_time;
   std::string _prefix;

@@ -5,6 +5,7 @@
 #include <dolfinx/fem/DofMap.h>
 #include <dolfinx/mesh/Mesh.h>
 #include <dolfinx/mesh/Topology.h>
+#include <numeric>
 
 namespace gelx
 {
@@ -83,6 +84,31 @@ void DirichletConditions::update(double t)
           return values;
         });
   }
+}
+
+std::shared_ptr<const dolfinx::fem::DirichletBC<double>>
+prescribe_sub(std::shared_ptr<const dolfinx::fem::FunctionSpace> sub,
+              std::shared_ptr<const dolfinx::fem::Function<double>> value,
+              std::span<const std::int32_t> facets)
+{
+  const int facet_dim = sub->mesh()->topology().dim() - 1;
+  return std::make_shared<dolfinx::fem::DirichletBC<double>>(
+      value,
+      dolfinx::fem::locate_dofs_topological({*sub, *value->function_space()}, facet_dim, facets),
+      sub);
+}
+
+std::shared_ptr<const dolfinx::fem::DirichletBC<double>>
+prescribe_sub_every_node(std::shared_ptr<const dolfinx::fem::FunctionSpace> sub,
+                         std::shared_ptr<const dolfinx::fem::Function<double>> value)
+{
+  const int dim = sub->mesh()->topology().dim();
+  const auto cells = sub->mesh()->topology().index_map(dim);
+  std::vector<std::int32_t> all(cells->size_local() + cells->num_ghosts());
+  std::iota(all.begin(), all.end(), 0);
+  return std::make_shared<dolfinx::fem::DirichletBC<double>>(
+      value, dolfinx::fem::locate_dofs_topological({*sub, *value->function_space()}, dim, all),
+      sub);
 }
 
 std::pair<double, double> component_range(const dolfinx::fem::Function<double>& u,

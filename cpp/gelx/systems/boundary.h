@@ -10,6 +10,7 @@
 #include <dolfinx/mesh/MeshTags.h>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace gelx
@@ -63,6 +64,19 @@ private:
   std::vector<Condition> _conditions;
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
 };
+
+/// The Dirichlet condition sub = value on a scalar sub-space of a mixed space (a chemical
+/// potential, a pressure), `value` a function on its collapsed space: on the facets in
+/// `facets` (find(tag) of a MeshTags), or, with every_node, at every node (the whole field
+/// prescribed: a swelling gel's solvent held at equilibrium, whose conservation rows then drop
+/// out).
+std::shared_ptr<const dolfinx::fem::DirichletBC<double>>
+prescribe_sub(std::shared_ptr<const dolfinx::fem::FunctionSpace> sub,
+              std::shared_ptr<const dolfinx::fem::Function<double>> value,
+              std::span<const std::int32_t> facets);
+std::shared_ptr<const dolfinx::fem::DirichletBC<double>>
+prescribe_sub_every_node(std::shared_ptr<const dolfinx::fem::FunctionSpace> sub,
+                         std::shared_ptr<const dolfinx::fem::Function<double>> value);
 
 /// Smallest and largest value of component `c` of a vector function at its dofs on the facets
 /// tagged `tag` (all ranks): a probe for the displacement of a face.

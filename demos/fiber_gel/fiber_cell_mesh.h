@@ -20,9 +20,12 @@ struct FiberCellGeometry
   double D = 50;  ///< cell width across the fiber (D > d)
   /// "eighth": 1/8 of the cell, [0, D/2]^2 x [0, L/2], bounded by the three mirror planes
   /// through the fiber's centre; "full": the whole cell [-D/2, D/2]^2 x [-L/2, L/2], meshed as
-  /// the 1/8 cell and its mirror images (so opposite faces match node for node)
+  /// the 1/8 cell and its mirror images (so opposite faces match node for node); "film": the
+  /// 1/8 cell's mesh for a film one layer of fibers thick, its face x = D/2 the film's free
+  /// surface (the cell's conditions are the caller's; the mesh is the same)
   std::string cell = "eighth";
   bool full() const { return cell == "full"; }
+  bool film() const { return cell == "film"; }
   double h_fiber = 2;   ///< mesh size on the fiber surface
   double h_far = 10;    ///< mesh size from `grading` away from the fiber on
   double grading = 10;  ///< distance over which the size grows from h_fiber to h_far

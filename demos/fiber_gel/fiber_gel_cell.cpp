@@ -5,47 +5,11 @@
 #include <cmath>
 #include <dolfinx/fem/utils.h>
 #include <gelx/io/parameters.h>
-#include <theory/flory_rehner.h>
 
 using namespace dolfinx;
 
 namespace gelx::scenes
 {
-
-double GelContraction::phi_f() const { return phi_i / std::pow(alpha0, 3); }
-
-std::pair<double, double> GelContraction::chi_line() const
-{
-  if (_given_chi)
-    return *_given_chi;
-  const double chi_i = theory::chi_free(phi_i, n), chi_f = theory::chi_free(phi_f(), n);
-  const double chi_B = (chi_f - chi_i) / (T_f - T_i);
-  return {chi_B, chi_i - chi_B * T_i};
-}
-
-void GelContraction::set_chi(double chi_A, double chi_B)
-{
-  const auto free_phi = [&](double T)
-  {
-    try
-    {
-      return theory::phi_free(chi_A + chi_B * T, n);
-    }
-    catch (const std::runtime_error&)
-    {
-      throw InputError("chi(T) = " + std::to_string(chi_A + chi_B * T) + " at T = "
-                       + std::to_string(T) + " K: the free gel has no swollen state there");
-    }
-  };
-  phi_i = free_phi(T_i);
-  alpha0 = std::cbrt(phi_i / free_phi(T_f));
-  _given_chi = {chi_B, chi_A};
-}
-
-double GelContraction::uniaxial_alpha_perp() const
-{
-  return theory::contract(n, alpha0, phi_i, 0.0).alpha_perp;
-}
 
 namespace
 {
@@ -137,7 +101,7 @@ void FiberGelCell::constrain_eighth()
   const std::array<std::string, 3> faces = {"x_max", "y_max", "z_max"};
   for (int j = 0; j < 3; ++j)
   {
-    if (j == 2 && _g.rod())
+    if ((j == 0 && _g.film()) || (j == 2 && _g.rod()))
       continue;
     std::array<double, 3> normal = {0, 0, 0};
     normal[j] = 1;
@@ -168,7 +132,8 @@ CellContraction FiberGelCell::contraction() const
   // Edge of the modelled cell along each axis: the macro unknown displaces its far face
   const double scale = _g.full() ? 1.0 : 0.5;
   const std::array<double, 3> edge = {scale * _g.D, scale * _g.D, scale * _g.L};
-  std::array<double, 3> alpha = {1, 1, 1};
+  // A film's thickness has no macro unknown: its free surface does not stay plane
+  std::array<double, 3> alpha = {_g.film() ? NAN : 1.0, 1, 1};
   double shear = 0;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)

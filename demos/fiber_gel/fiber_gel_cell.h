@@ -8,6 +8,7 @@
 /// them, i.e. zero macro stress.
 
 #include "fiber_cell_mesh.h"
+#include "gel_contraction.h"
 
 #include <array>
 #include <dolfinx/fem/Constant.h>
@@ -18,45 +19,15 @@
 #include <gelx/systems/problem.h>
 #include <map>
 #include <memory>
-#include <optional>
 #include <string>
 #include <utility>
 
 namespace gelx::scenes
 {
 
-/// The gel and its contraction, after thesis section 4.4.2 steps (1)-(5): the free gel
-/// contracts isotropically by alpha0 from phi_i at T_i to phi_f = phi_i / alpha0^3 at T_f,
-/// which fixes chi_i = chi(phi_i) and chi_f = chi(phi_f) by Eq. 4.7 and the line
-/// chi = chi_A + chi_B T through (T_i, chi_i) and (T_f, chi_f). Or the other way round: chi(T)
-/// given (set_chi), phi_i and alpha0 are the free gel's states at T_i and T_f.
-struct GelContraction
-{
-  double n = 0.01;     ///< N nu / V_m
-  double phi_i = 0.3;  ///< polymer volume fraction of the stress-free reference state at T_i
-  double alpha0 = 0.8; ///< contraction ratio of the free gel from T_i to T_f (Eq. 4.13)
-  double T_i = 298;    ///< initial temperature (K)
-  double T_f = 363;    ///< final temperature (K)
-
-  /// Eq. 4.13 inverted: the free gel's volume fraction at T_f.
-  double phi_f() const;
-  /// chi_B (1/K) and chi_A of chi = chi_A + chi_B T: given (set_chi), or steps (1)-(2).
-  std::pair<double, double> chi_line() const;
-  /// Take chi(T) = chi_A + chi_B T as given, and phi_i and alpha0 from it: the free gel's volume
-  /// fractions at T_i and T_f (Eq. 4.7 inverted). Throws InputError where chi(T) has no
-  /// free-swelling state. Call after n, T_i and T_f are set.
-  void set_chi(double chi_A, double chi_B);
-  /// The limit of a fiber of no thickness through the cell (L = l, D/d -> infinity): the
-  /// transverse contraction ratio of the uniaxially constrained gel without prestrain (Eq. 4.14,
-  /// phi_i = phi'_i = phi_c), from the theory library.
-  double uniaxial_alpha_perp() const;
-
-private:
-  std::optional<std::pair<double, double>> _given_chi; ///< {chi_B, chi_A}, when set_chi gave it
-};
-
 /// Contraction ratios of the cell: deformed over reference edge length (Eq. 4.21: the lattice
-/// vectors' stretches), x and y across the fiber, z along it.
+/// vectors' stretches), x and y across the fiber, z along it (alpha_x NaN in a film, whose
+/// surface x = D/2 is free).
 struct CellContraction
 {
   double alpha_x = 1, alpha_y = 1, alpha_z = 1;
@@ -94,7 +65,8 @@ public:
 
 private:
   /// The 1/8 cell: rollers on the mirror planes, the outer faces plane with a free macro
-  /// normal displacement each (what periodicity reduces to for this symmetric cell).
+  /// normal displacement each (what periodicity reduces to for this symmetric cell); in a
+  /// film, the face x = D/2 free (its surface).
   void constrain_eighth();
   /// The full cell: Eq. 4.21 on each pair of opposite faces, the jump u(r + c) - u(r) a free
   /// macro vector per pair (nine unknowns).

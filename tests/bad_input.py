@@ -124,6 +124,13 @@ CASES = {
         ("bonded_ellipsoid", ["--shape", "ellipsoid"], "is a free body: give --sides free"),
         ("unknown_shape", ["--shape", "cylinder"], "must be box or ellipsoid"),
     ],
+    "fiber_film": [
+        ("spinodal_step", ["--alpha0", "0.8"], "into its spinodal"),
+        ("negative_diffusivity", ["--diffusivity", "-1"], "'diffusivity' = -1: must be positive"),
+        ("phi_f_beyond_one", ["--phi_i", "0.75"], "phi_i / alpha0^3 must stay below 1"),
+        ("cell_narrower_than_fiber", ["--D", "10"], "D must exceed the fiber diameter d"),
+        ("no_temperature_step", ["--T_f", "298"], "T_f must differ from T_i"),
+    ],
     "design": [
         ("stretch_bounds_crossed", ["--stretch_min", "1.1", "--stretch_max", "0.9"],
          "stretch_min must be below stretch_max"),
@@ -168,7 +175,8 @@ TWO_RANKS = {"block": ["missing_mesh", "dt_above_dt_max", "fieldsplit_not_mixed"
              "inflation": ["B_equal_A"], "buckling": ["ty_equal_tx"],
              "fiber_gel": ["cell_narrower_than_fiber", "phi_f_beyond_one"],
              "bistrip": ["unknown_layer_kind", "end_distance_beyond_L"],
-             "swelling": ["mu_below_reference"], "design": ["fewer_cells_than_slabs"]}
+             "swelling": ["mu_below_reference"], "design": ["fewer_cells_than_slabs"],
+             "fiber_film": ["spinodal_step"]}
 
 # A valid scene file per scene (values other than the defaults, for a run of a few seconds),
 # with the status its run must end in. The buckling run stops after max_steps on its straight
@@ -182,6 +190,7 @@ SCENE_FILES = {
     "fiber_gel": ({"l": "20", "L": "35", "D": "25", "h_fiber": "3", "h_far": "8"}, "completed"),
     "bistrip": ({"ends": "free", "stretch": "1.02", "L": "60", "nz": "20"}, "completed"),
     "swelling": ({"nz": "10", "chi": "0.5", "end_time": "100", "ramp_time": "2"}, "completed"),
+    "fiber_film": ({"h_far": "8", "end_time": "1e-6", "ramp_time": "1e-7"}, "completed"),
     "design": ({"length": "4", "nx": "4", "slabs": "2", "radius": "2", "pitch": "3"},
                "completed"),
     "flory_rehner": ({"n_phi": "20", "n_eps": "11", "n_nu_vm": "0.01", "peo_n_grid": "5",

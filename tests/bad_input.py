@@ -100,6 +100,7 @@ CASES = {
         ("cell_narrower_than_fiber", ["--D", "10"], "D must exceed the fiber diameter d"),
         ("fiber_longer_than_cell", ["--l", "40", "--L", "30"], "l must lie in [d, L]"),
         ("full_cell_with_rod", ["--cell", "full"], "needs a fiber shorter than the cell"),
+        ("layers_of_a_cell", ["--layers", "2"], "layers of fibers other than one make a film"),
         ("order_three", ["--order", "3"], "must be 1 or 2"),
         ("chi_one_number", ["--chi", "0.5"], "'chi' = 0.5: must be 'fit' or two numbers 'A,B'"),
         ("chi_with_alpha0", ["--chi", "-0.7,0.0043", "--alpha0", "0.7"],
@@ -130,6 +131,7 @@ CASES = {
         ("phi_f_beyond_one", ["--phi_i", "0.75"], "phi_i / alpha0^3 must stay below 1"),
         ("cell_narrower_than_fiber", ["--D", "10"], "D must exceed the fiber diameter d"),
         ("no_temperature_step", ["--T_f", "298"], "T_f must differ from T_i"),
+        ("no_layers", ["--layers", "0"], "'layers' = 0: must be at least 1"),
     ],
     "design": [
         ("stretch_bounds_crossed", ["--stretch_min", "1.1", "--stretch_max", "0.9"],

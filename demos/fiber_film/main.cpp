@@ -4,18 +4,20 @@
 // Sample runs:
 //   ./gelx run fiber_film                                   # capsules l = 20, L = 30, D = 25 nm
 //   ./gelx run fiber_film --l 30 --L 30 --D 50              # rods through the cell (Fig. 4.6)
+//   ./gelx run fiber_film --layers 2                        # three layers, 75 nm thick
 //   ./gelx run fiber_gel --l 20 --L 30 --D 25 --cell film   # the state it tends to, at once
 //
 // The fiber gel of thesis §4.4 (rigid fibers of diameter d and length l bonded in a
 // Flory-Rehner gel, Eq. 4.28, stress free in its swollen state phi_i at T_i; chi(T) as in
-// §4.4.2: a free gel would contract by alpha0 at T_f) as a film one layer of fibers thick:
-// the fibers lie in the film's mid-plane x = 0, parallel (along z), at spacing D across (y)
-// and period L along (z); the film is D thick and in a bath of pure solvent on both faces. By
-// symmetry 1/8 of one cell is modelled, [0, D/2]^2 x [0, L/2] (the mesh of demos/fiber_gel):
-// rollers and no flux on the mirror planes x, y, z = 0; the faces y = D/2 and z = L/2 plane
-// with a free normal displacement each (the film is unbounded in y and z and unloaded: zero
-// in-plane force), no flux through them (they are mirror planes of the array too); the face
-// x = D/2 free and in the bath (mu = 0). The gel's solvent moves by the coupled diffusion of
+// §4.4.2: a free gel would contract by alpha0 at T_f) as a film: layers of fibers at x = k D,
+// parallel (along z), at spacing D across (y) and period L along (z), one layer in the film's
+// mid-plane x = 0 and --layers - 1 on either side of it; the film is (2 layers - 1) D thick
+// and in a bath of pure solvent on both faces. By symmetry 1/8 of a column of cells is
+// modelled, [0, (layers - 1/2) D] x [0, D/2] x [0, L/2] (the mesh of demos/fiber_gel): rollers
+// and no flux on the mirror planes x, y, z = 0; the faces y = D/2 and z = L/2 plane with a
+// free normal displacement each (the film is unbounded in y and z and unloaded: zero in-plane
+// force), no flux through them (they are mirror planes of the array too); the film's face
+// free and in the bath (mu = 0). The gel's solvent moves by the coupled diffusion of
 // Hong, Zhao, Zhou and Suo (forms/fiber_film.py: unknowns u and mu, P2-P1 tetrahedra). At
 // t = 0 the temperature steps from T_i to T_f (a smooth step over --ramp_time): the gel, which
 // cannot lose solvent at once, deforms at fixed local volume, then expels solvent through the
@@ -66,6 +68,7 @@ int main(int argc, char* argv[])
 {
   // 1. Scene parameters (lengths in nm, temperatures in K, stresses in MPa, times in s)
   gelx::scenes::FiberCellGeometry g;
+  g.cell = "film";
   g.l = 20;
   g.D = 25;
   g.h_fiber = 2;
@@ -81,6 +84,10 @@ int main(int argc, char* argv[])
   prm.bind("geometry", "D", g.D,
            "spacing of the fibers across them (nm, > d), and the film's thickness",
            P::positive);
+  prm.bind("geometry", "layers", g.layers,
+           "layers of fibers in the half film x >= 0, the first in the mid-plane: the film is "
+           "2 layers - 1 of them and (2 layers - 1) D thick",
+           P::at_least_one);
   prm.bind("mesh", "h_fiber", g.h_fiber, "mesh size on the fiber (nm)", P::positive);
   prm.bind("mesh", "h_far", g.h_far, "mesh size away from the fiber (nm)", P::positive);
   prm.bind("mesh", "grading", g.grading,
@@ -146,12 +153,20 @@ int main(int argc, char* argv[])
     { return gel.T_i + gelx::smooth_step(t, p.ramp_time) * (gel.T_f - gel.T_i); };
     const auto set_time = [&](double t) { forms.set("chi", chi_A + chi_B * temperature(t)); };
 
-    // 3. The fiber rigid and bonded (clamped: by symmetry it does not move), rollers on the
-    //    mirror planes (one on z = L/2 too where a rod holds it), the bath on x = D/2
+    // 3. The fibers rigid and bonded: the mid-plane's clamped (by symmetry it does not move),
+    //    the other layers' moving along x only (the mirror planes y = 0 and z = 0 through
+    //    them exclude any other rigid motion); rollers on the mirror planes (one on z = L/2 too
+    //    where a rod holds it), the bath on the film's face x = (layers - 1/2) D
     auto U = W->sub({0});
     auto M = W->sub({1});
     gelx::DirichletConditions supports(U, geo.facet_tags);
     supports.clamp(geo.tag("fiber"));
+    const auto layer_fiber = [&](int k) { return geo.tag("fiber_" + std::to_string(k)); };
+    for (int k = 1; k < g.layers; ++k)
+    {
+      supports.fix(layer_fiber(k), 1);
+      supports.fix(layer_fiber(k), 2);
+    }
     supports.fix(geo.tag("x_min"), 0);
     supports.fix(geo.tag("y_min"), 1);
     supports.fix(geo.tag("z_min"), 2);
@@ -171,6 +186,8 @@ int main(int argc, char* argv[])
     gelx::MultipointConstraint film(problem, U);
     const int U_y = film.add_macro();
     film.plane_stays_plane(*geo.facet_tags, geo.tag("y_max"), {0, 1, 0}, U_y);
+    for (int k = 1; k < g.layers; ++k) // the fiber's translation: a free macro unknown
+      film.plane_stays_plane(*geo.facet_tags, layer_fiber(k), {1, 0, 0}, film.add_macro());
     const int U_z = g.rod() ? gelx::MultipointConstraint::no_macro : film.add_macro();
     if (!g.rod())
       film.plane_stays_plane(*geo.facet_tags, geo.tag("z_max"), {0, 0, 1}, U_z);

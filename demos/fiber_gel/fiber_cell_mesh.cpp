@@ -14,30 +14,33 @@ namespace gelx::scenes
 {
 namespace
 {
-/// The fiber as an OpenCASCADE solid centred at the origin; returns its (dim, tag) pairs.
-gmsh::vectorpair add_fiber(const FiberCellGeometry& g)
+/// The fiber as an OpenCASCADE solid centred at (x, 0, 0); returns its (dim, tag) pairs.
+gmsh::vectorpair add_fiber(const FiberCellGeometry& g, double x)
 {
   namespace occ = gmsh::model::occ;
   const double r = g.d / 2;
   if (g.rod()) // longer than the cell, so the cut leaves the rod's cross-section as holes
-    return {{3, occ::addCylinder(0, 0, -g.L, 0, 0, 2 * g.L, r)}};
+    return {{3, occ::addCylinder(x, 0, -g.L, 0, 0, 2 * g.L, r)}};
   const double c = g.l / 2 - r; // half-length of the cylindrical part
-  gmsh::vectorpair caps = {{3, occ::addSphere(0, 0, -c, r)}};
+  gmsh::vectorpair caps = {{3, occ::addSphere(x, 0, -c, r)}};
   if (c <= 0) // l = d: the two caps make a sphere
     return caps;
-  caps.push_back({3, occ::addSphere(0, 0, c, r)});
+  caps.push_back({3, occ::addSphere(x, 0, c, r)});
   gmsh::vectorpair fiber;
   std::vector<gmsh::vectorpair> unused;
-  occ::fuse({{3, occ::addCylinder(0, 0, -c, 0, 0, 2 * c, r)}}, caps, fiber, unused);
+  occ::fuse({{3, occ::addCylinder(x, 0, -c, 0, 0, 2 * c, r)}}, caps, fiber, unused);
   return fiber;
 }
 
-/// Distance from (x, y, z) to the fiber's surface (negative inside).
+/// Distance from (x, y, z) to the nearest fiber's surface (negative inside).
 double distance_to_fiber(const FiberCellGeometry& g, double x, double y, double z)
 {
   const double r = g.d / 2;
   const double axial = g.rod() ? 0.0 : std::max(0.0, std::abs(z) - (g.l / 2 - r));
-  return std::sqrt(x * x + y * y + axial * axial) - r;
+  // the fibers at x = k D, k = 0 ... layers - 1: the nearest is the one of k nearest x / D
+  const double k = std::clamp(std::round(x / g.D), 0.0, double(g.layers - 1));
+  const double dx = x - k * g.D;
+  return std::sqrt(dx * dx + y * y + axial * axial) - r;
 }
 
 /// The whole cell is the 1/8 cell mirrored in x = 0, y = 0 and z = 0; the images of the faces
@@ -69,6 +72,8 @@ void FiberCellGeometry::check() const
     throw InputError("the fiber length l must lie in [d, L]");
   if (full() && rod())
     throw InputError("the full periodic cell needs a fiber shorter than the cell (l < L)");
+  if (layers < 1 || (layers > 1 && !film()))
+    throw InputError("layers of fibers other than one make a film only (cell film)");
 }
 
 TaggedMesh fiber_cell_mesh(MPI_Comm comm, const FiberCellGeometry& g)
@@ -78,10 +83,15 @@ TaggedMesh fiber_cell_mesh(MPI_Comm comm, const FiberCellGeometry& g)
   {
     namespace occ = gmsh::model::occ;
     gmsh::model::add("fiber_cell");
-    const int box = occ::addBox(0, 0, 0, g.D / 2, g.D / 2, g.L / 2);
-    gmsh::vectorpair cell;
+    const int box = occ::addBox(0, 0, 0, (g.layers - 0.5) * g.D, g.D / 2, g.L / 2);
+    gmsh::vectorpair fibers, cell;
+    for (int k = 0; k < g.layers; ++k)
+    {
+      const gmsh::vectorpair fiber = add_fiber(g, k * g.D);
+      fibers.insert(fibers.end(), fiber.begin(), fiber.end());
+    }
     std::vector<gmsh::vectorpair> unused;
-    occ::cut({{3, box}}, add_fiber(g), cell, unused);
+    occ::cut({{3, box}}, fibers, cell, unused);
     occ::synchronize();
 
     // Faces by their bounding box: flat and on a cell face, or else the fiber
@@ -94,7 +104,9 @@ TaggedMesh fiber_cell_mesh(MPI_Comm comm, const FiberCellGeometry& g)
     {
       std::array<double, 6> b;
       gmsh::model::getBoundingBox(dim, tag, b[0], b[1], b[2], b[3], b[4], b[5]);
-      std::string name = "fiber";
+      // the fiber of layer k (its surface centred at x = k D; the first is cut in half by x = 0)
+      const int k = int(std::lround(0.5 * (b[0] + b[3]) / g.D));
+      std::string name = k == 0 ? "fiber" : "fiber_" + std::to_string(k);
       for (int i = 0; i < 3; ++i)
         if (b[i + 3] - b[i] < tol)
           name = axes[i] + (std::abs(b[i]) < tol ? "_min" : "_max");

@@ -26,6 +26,9 @@ struct FiberCellGeometry
   std::string cell = "eighth";
   bool full() const { return cell == "full"; }
   bool film() const { return cell == "film"; }
+  /// A film's layers of fibers, at x = k D for k = 0 ... layers - 1 (the film 2 layers - 1
+  /// layers thick: the modelled half [0, (layers - 1/2) D] and its mirror image)
+  int layers = 1;
   double h_fiber = 2;   ///< mesh size on the fiber surface
   double h_far = 10;    ///< mesh size from `grading` away from the fiber on
   double grading = 10;  ///< distance over which the size grows from h_fiber to h_far
@@ -38,7 +41,7 @@ struct FiberCellGeometry
 };
 
 /// Mesh the cell with gmsh (OpenCASCADE: box minus fiber) in linear tetrahedra. Facet tags:
-/// "fiber" (the fiber surface) and "x_min", "x_max", "y_min", "y_max", "z_min", "z_max" (the
+/// "fiber" (the fiber surface; a film's further layers' "fiber_1", "fiber_2", ...) and "x_min", "x_max", "y_min", "y_max", "z_min", "z_max" (the
 /// cell faces; for the 1/8 cell the *_min faces are the mirror planes); cell tag "gel". Uses
 /// mesh_gmsh_model's mirror_axes for the whole cell.
 /// Calls g.check(). Collective.

@@ -81,6 +81,12 @@ FiberGelCell::FiberGelCell(MPI_Comm comm, const FiberCellGeometry& geometry,
     // A rod through the cell holds the end faces: alpha_par = 1 (thesis Fig. 4.6)
     if (_g.rod())
       _bcs->fix(_mesh.tag("z_max"), 2);
+    // A film's further layers of fibers move along x only (the mirror planes through them)
+    for (int k = 1; k < _g.layers; ++k)
+    {
+      _bcs->fix(_mesh.tag("fiber_" + std::to_string(k)), 1);
+      _bcs->fix(_mesh.tag("fiber_" + std::to_string(k)), 2);
+    }
   }
   _bcs->update(0);
   _problem = std::make_unique<NonlinearProblem>(_u, form(kernels.residual, {V}),
@@ -108,6 +114,9 @@ void FiberGelCell::constrain_eighth()
     _macro[j][j] = _mpc->add_macro();
     _mpc->plane_stays_plane(*_mesh.facet_tags, _mesh.tag(faces[j]), normal, _macro[j][j]);
   }
+  for (int k = 1; k < _g.layers; ++k) // a film's further fibers: their translation, free
+    _mpc->plane_stays_plane(*_mesh.facet_tags, _mesh.tag("fiber_" + std::to_string(k)),
+                            {1, 0, 0}, _mpc->add_macro());
 }
 
 void FiberGelCell::constrain_periodic()

@@ -66,7 +66,8 @@ public:
 private:
   /// The 1/8 cell: rollers on the mirror planes, the outer faces plane with a free macro
   /// normal displacement each (what periodicity reduces to for this symmetric cell); in a
-  /// film, the face x = D/2 free (its surface).
+  /// film, the face x = D/2 free (its surface), the fibers of its further layers translating
+  /// along x at a free macro displacement each.
   void constrain_eighth();
   /// The full cell: Eq. 4.21 on each pair of opposite faces, the jump u(r + c) - u(r) a free
   /// macro vector per pair (nine unknowns).

@@ -53,6 +53,10 @@ int main(int argc, char* argv[])
            "one layer of fibers thick, its face x = D/2 free (the state demos/fiber_film tends "
            "to; alpha_perp is then the in-plane one, from U_y)",
            gelx::Parameters::one_of({"eighth", "full", "film"}));
+  prm.bind("geometry", "layers", g.layers,
+           "with --cell film: layers of fibers in the half film x >= 0, the first in the "
+           "mid-plane (the film is 2 layers - 1 of them thick)",
+           gelx::Parameters::at_least_one);
   prm.bind("mesh", "h_fiber", g.h_fiber, "mesh size on the fiber (nm)",
            gelx::Parameters::positive);
   prm.bind("mesh", "h_far", g.h_far, "mesh size away from the fiber (nm)",

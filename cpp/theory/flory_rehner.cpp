@@ -108,6 +108,11 @@ double chi_difference(double phi, double lambda_par, double n)
   return n / (phi * phi) * (1.0 / lambda_par - std::cbrt(phi));
 }
 
+double drained_uniaxial_modulus(double phi, double chi, double n)
+{
+  return phi * phi * (1.0 / (1.0 - phi) - 2.0 * chi) + n * (std::cbrt(phi) + phi / 2.0);
+}
+
 double lambda_monotone_bound(double n)
 {
   if (n <= 0.0)

@@ -41,6 +41,16 @@ double dchi_constrained(double phi, double lambda_par, double n);
 /// Eq. 4.18 in closed form: \f$ \chi - \chi' = n\phi^{-2}(\lambda_\parallel^{-1} - \phi^{1/3}) \f$.
 double chi_difference(double phi, double lambda_par, double n);
 
+/// The drained modulus of uniaxial strain, d^2 W / d lambda^2 at F = I for W(diag(lambda, 1, 1))
+/// at fixed solvent potential, of a gel whose reference state holds volume fraction phi, in
+/// units of kT/nu per reference volume: the mixing energy's
+/// \f$ \phi^2 (1/(1-\phi) - 2\chi) \f$ plus the network's \f$ n (\phi^{1/3} + \phi/2) \f$
+/// (Eq. 4.2's (n/2)(I_1 - 3 - ln J) per dry volume). The longitudinal entry of the acoustic
+/// tensor, the first to lose positivity: where it is negative the homogeneous gel is inside
+/// its spinodal and separates into a collapsed and a swollen phase (the skin of a gel
+/// heated faster than it drains, which holds phi while chi rises).
+double drained_uniaxial_modulus(double phi, double chi, double n);
+
 /// Largest lambda_par for which chi_constrained is provably strictly increasing on (0, 1).
 /// dchi'/dphi = n phi^-2 (2/(lambda phi) - 1/2) + h'(phi) > 0 follows from h' >= 1/3 + phi/2 when
 /// the quartic phi^3/3 + phi^4/2 - n phi/2 + 2n/lambda is positive on (0, 1); its minimum is at

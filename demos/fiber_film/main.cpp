@@ -46,6 +46,7 @@
 #include <gelx/systems/forms.h>
 #include <gelx/systems/mixed.h>
 #include <gelx/systems/problem.h>
+#include <theory/flory_rehner.h>
 
 using namespace dolfinx;
 
@@ -122,20 +123,17 @@ int main(int argc, char* argv[])
       throw gelx::InputError("phi_i / alpha0^3 must stay below 1 (the contracted gel's phi)");
     const auto [chi_B, chi_A] = gel.chi_line();
     const double chi_i = chi_A + chi_B * gel.T_i, chi_f = chi_A + chi_B * gel.T_f;
-    // Right after the step the gel has lost no solvent: it holds phi_i at chi_f. If it is then
-    // inside its spinodal (the drained modulus of uniaxial strain, d^2W/dlambda^2 at
-    // F = I, negative: phi_i^2 (1/(1 - phi_i) - 2 chi) + n (phi_i^(1/3) + phi_i/2) < 0) it would
-    // separate into a collapsed and a swollen phase (the skin of a quickly heated gel), which
-    // this model, without a gradient energy, cannot follow: refused rather than run into a
-    // Newton failure
-    const double a = gel.phi_i;
-    const double uniaxial_modulus
-        = a * a * (1 / (1 - a) - 2 * std::max(chi_i, chi_f)) + gel.n * (std::cbrt(a) + a / 2);
-    if (uniaxial_modulus <= 0)
+    // Right after the step the gel has lost no solvent: it holds phi_i at chi_f. Inside its
+    // spinodal (drained uniaxial modulus negative) it would separate into a collapsed and a
+    // swollen phase (the skin of a quickly heated gel), which this model, without a gradient
+    // energy, cannot follow: refused rather than run into a Newton failure
+    const double chi_highest = std::max(chi_i, chi_f);
+    const double modulus = gelx::theory::drained_uniaxial_modulus(gel.phi_i, chi_highest, gel.n);
+    if (modulus <= 0)
       throw gelx::InputError(
           "the temperature step takes the undrained gel (phi_i at chi = "
-          + std::to_string(std::max(chi_i, chi_f))
-          + ") into its spinodal (drained uniaxial modulus " + std::to_string(uniaxial_modulus)
+          + std::to_string(chi_highest) + ") into its spinodal (drained uniaxial modulus "
+          + std::to_string(modulus)
           + " kT/nu): it would phase-separate, which this model cannot follow; take a smaller "
             "step (alpha0 closer to 1)");
 
@@ -244,11 +242,12 @@ int main(int argc, char* argv[])
     //    them), TSBDF's history and this record. TS's error tolerance: rtol 1e-4, and an
     //    absolute one 1e-4 of mu's undrained jump phi_i^2 (chi_f - chi_i) (mu's scale in kT,
     //    1e-2 by default; the displacements, of order 1 nm, are held by rtol). The first step
-    //    a tenth of the ramp: it resolves the step in T, and much shorter ones make the
-    //    tangent's conservation rows (shift ~ 1/dt) so much larger than its mobility rows
-    //    (D/h^2) that MUMPS' factorisation fails
+    //    a tenth of the ramp: it resolves the step in T, and steps of 1e-5 (D/2)^2/D or less make
+    //    the tangent's conservation rows (shift ~ 1/dt) so much larger than its mobility rows
+    //    (D/h^2) that MUMPS delays pivots beyond its workspace (FACTOR_OUTMEMORY at 1e-12 s;
+    //    -fiber_film_mat_mumps_icntl_14 400 gets past it)
     char atol[32], first_step[32];
-    std::snprintf(atol, sizeof atol, "%.6g", 1e-4 * a * a * std::abs(chi_f - chi_i));
+    std::snprintf(atol, sizeof atol, "%.6g", 1e-4 * gel.phi_i * gel.phi_i * std::abs(chi_f - chi_i));
     std::snprintf(first_step, sizeof first_step, "%.6g", p.ramp_time / 10);
     gelx::set_default_options("fiber_film_",
                               {{"ts_rtol", "1e-4"}, {"ts_atol", atol}, {"ts_dt", first_step}});

@@ -37,8 +37,10 @@
 #include <cmath>
 #include <cstdio>
 #include <dolfinx/fem/utils.h>
+#include <gelx/io/probe.h>
 #include <gelx/io/program.h>
 #include <gelx/io/progress.h>
+#include <gelx/io/transient_record.h>
 #include <gelx/solvers/dynamics.h>
 #include <gelx/solvers/transient.h>
 #include <gelx/systems/boundary.h>
@@ -210,22 +212,10 @@ int main(int argc, char* argv[])
     // corner x = 0, y = D/2, z = L/2, a vertex of the mesh, so a node of mu): it holds the
     // undrained value phi_i^2 (chi - chi_i) until the solvent leaving through the faces is
     // felt there, and falls to the bath's 0
-    std::int32_t midplane_node = -1;
-    {
-      const std::vector<double> X = mu->function_space()->tabulate_dof_coordinates(false);
-      const std::array<double, 3> corner = {0, g.D / 2, g.L / 2};
-      for (std::int32_t i = 0; i < mu->function_space()->dofmap()->index_map->size_local(); ++i)
-        if (std::hypot(X[3 * i] - corner[0], X[3 * i + 1] - corner[1], X[3 * i + 2] - corner[2])
-            < 1e-9 * g.D)
-          midplane_node = i;
-    }
-    const auto mu_midplane = [&]
-    {
-      double local = midplane_node >= 0 ? mu->x()->array()[midplane_node] : -INFINITY;
-      double value;
-      MPI_Allreduce(&local, &value, 1, MPI_DOUBLE, MPI_MAX, run.comm());
-      return value;
-    };
+    const std::array<double, 3> corner = {0, g.D / 2, g.L / 2};
+    const gelx::NodeProbe midplane(mu, [&](const std::array<double, 3>& X)
+                                   { return std::hypot(X[0] - corner[0], X[1] - corner[1],
+                                                       X[2] - corner[2]) < 1e-9 * g.D; });
     const auto volume = forms.form(form_fiber_film_volume_p2p1);
     const double V0 = gelx::assemble_global_scalar(*volume);
     run.summary = {{"num_dofs", W->dofmap()->index_map->size_global()},
@@ -254,43 +244,26 @@ int main(int argc, char* argv[])
     gelx::TransientProblem transient(run.comm(), film, w_dot, forms.constant("shift"), set_time,
                                      p.end_time, "fiber_film_");
     const gelx::PathState start = run.start_path(film);
-    const gelx::StepObserver checkpoints = run.checkpoints();
-    gelx::LogTimeOutputs outputs(p.outputs, p.end_time, start.scene);
-    int newton_iterations = start.scene.value("newton_iterations", 0);
     gelx::ProgressLine progress(
         run.comm(), {.load_name = "t",
                      .quantity = [&]
                      { return gelx::quantity_text("alpha_perp", run.summary["alpha_perp"]); }});
+    gelx::TransientRecorder record(run, results, transient, fields, progress, p.outputs,
+                                   p.end_time, start);
     const int steps = transient.run(
         [&](const gelx::TransientStep& s)
         {
-          const double t = s.time;
           gelx::copy_sub_function(*w, 0, *u);
           gelx::copy_sub_function(*w, 1, *mu);
-          newton_iterations += s.step.newton.iterations;
           const auto [alpha_par, alpha_perp] = contraction();
-          const nlohmann::json quantities
-              = {{"alpha_par", alpha_par},
-                 {"alpha_perp", alpha_perp},
-                 {"anisotropy", alpha_par / alpha_perp},
-                 {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0},
-                 {"mu_midplane", mu_midplane()}};
-          nlohmann::json row = s.columns();
-          row["T"] = temperature(t);
-          row.update(quantities);
-          results.append_step(row);
-          if (outputs.due(s.step.step, t))
-            results.write_fields(t, fields.update());
-          run.summary.update(quantities);
-          run.summary.update({{"time", t},
-                              {"newton_iterations", newton_iterations},
-                              {"min_J_minus_phi0", problem.admissibility_margin()}});
-          progress.print(s.step, t, outputs.progress(t));
-          gelx::PathState state;
-          transient.save(state);
-          state.scene = {{"newton_iterations", newton_iterations}};
-          outputs.save(state.scene);
-          checkpoints(s.step, state);
+          run.summary["min_J_minus_phi0"] = problem.admissibility_margin();
+          record(s,
+                 {{"alpha_par", alpha_par},
+                  {"alpha_perp", alpha_perp},
+                  {"anisotropy", alpha_par / alpha_perp},
+                  {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0},
+                  {"mu_midplane", midplane.value()}},
+                 {{"T", temperature(s.time)}});
         },
         start.step > 0 ? &start : nullptr);
     run.summary["steps"] = steps;

@@ -39,6 +39,7 @@
 #include <string>
 #include <dolfinx/fem/utils.h>
 #include <gelx/io/mesh.h>
+#include <gelx/io/probe.h>
 #include <gelx/io/program.h>
 #include <gelx/solvers/dynamics.h>
 #include <gelx/solvers/load_stepping.h>
@@ -47,9 +48,9 @@
 #include <gelx/systems/forms.h>
 #include <gelx/systems/mixed.h>
 #include <gelx/systems/problem.h>
-#include <gelx/common/collectives.h>
 #include <gelx/common/petsc_utils.h>
 #include <gelx/io/progress.h>
+#include <gelx/io/transient_record.h>
 #include <theory/flory_rehner.h>
 
 using namespace dolfinx;
@@ -278,29 +279,20 @@ int main(int argc, char* argv[])
     // The swelling front: the reference depth below the surface z = H, on the line x = y = 0,
     // at which mu is half-way from mu0 to the surface's mu (mu's nodes on the line, gathered;
     // H once the front has crossed the piece)
-    std::vector<std::int32_t> line_nodes;
-    const std::vector<double> mu_nodes = mu->function_space()->tabulate_dof_coordinates(false);
-    for (std::int32_t i = 0; i < mu->function_space()->dofmap()->index_map->size_local(); ++i)
-      if (std::abs(mu_nodes[3 * i]) < 1e-9 * p.W && std::abs(mu_nodes[3 * i + 1]) < 1e-9 * p.W)
-        line_nodes.push_back(i);
+    const gelx::NodeProbe axis(mu, [&](const std::array<double, 3>& X)
+                               { return std::hypot(X[0], X[1]) < 1e-9 * p.W; });
     const auto front_depth = [&](double t)
     {
-      std::vector<double> local; // z, mu of each node
-      for (std::int32_t i : line_nodes)
-        local.insert(local.end(), {mu_nodes[3 * i + 2], mu->x()->array()[i]});
-      const std::vector<double> all = gelx::all_gather(run.comm(), local);
-      std::vector<std::array<double, 2>> line;
-      for (std::size_t k = 0; k < all.size(); k += 2)
-        line.push_back({all[k], all[k + 1]});
-      std::sort(line.begin(), line.end(), std::greater<>()); // from the surface down
+      std::vector<gelx::NodeProbe::Sample> line = axis.samples();
+      std::sort(line.begin(), line.end(), [](const auto& a, const auto& b)
+                { return a.X[2] > b.X[2]; }); // from the surface down
       const double half = mu0 + 0.5 * gelx::smooth_step(t, p.ramp_time) * (p.mu - mu0);
       for (std::size_t k = 1; k < line.size(); ++k)
-        if (line[k][1] < half)
+        if (line[k].value < half)
         {
-          const auto& [z_above, mu_above] = line[k - 1];
-          const auto& [z_below, mu_below] = line[k];
-          const double z = z_above + (half - mu_above) / (mu_below - mu_above) * (z_below - z_above);
-          return p.H - z;
+          const auto &above = line[k - 1], &below = line[k];
+          return p.H - (above.X[2] + (half - above.value) / (below.value - above.value)
+                                         * (below.X[2] - above.X[2]));
         }
       return p.H;
     };
@@ -361,38 +353,16 @@ int main(int argc, char* argv[])
     gelx::TransientProblem transient(run.comm(), problem, w_dot, forms.constant("shift"),
                                      set_time, p.end_time, "swelling_");
     const gelx::PathState start = run.start_path(problem);
-    const gelx::StepObserver checkpoints = run.checkpoints();
-    gelx::LogTimeOutputs outputs(p.outputs, p.end_time, start.scene);
-    int newton_iterations = start.scene.value("newton_iterations", 0);
-    int linear_iterations = start.scene.value("linear_iterations", 0);
+    gelx::TransientRecorder record(run, results, transient, fields, progress, p.outputs,
+                                   p.end_time, start);
     const int steps = transient.run(
         [&](const gelx::TransientStep& s)
         {
-          const double t = s.time;
           gelx::copy_sub_function(*w, 0, *u);
           gelx::copy_sub_function(*w, 1, *mu);
-          newton_iterations += s.step.newton.iterations;
-          linear_iterations += s.step.newton.linear_iterations;
-          const nlohmann::json quantities
-              = {{"thickness", thickness()},
-                 {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0},
-                 {"front_depth", front_depth(t)}};
-          nlohmann::json row = s.columns();
-          row.update(quantities);
-          results.append_step(row);
-          if (outputs.due(s.step.step, t))
-            results.write_fields(t, fields.update());
-          run.summary.update(quantities);
-          run.summary.update({{"time", t},
-                              {"newton_iterations", newton_iterations},
-                              {"linear_iterations", linear_iterations}});
-          progress.print(s.step, t, outputs.progress(t));
-          gelx::PathState state;
-          transient.save(state);
-          state.scene = {{"newton_iterations", newton_iterations},
-                         {"linear_iterations", linear_iterations}};
-          outputs.save(state.scene);
-          checkpoints(s.step, state);
+          record(s, {{"thickness", thickness()},
+                     {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0},
+                     {"front_depth", front_depth(s.time)}});
         },
         start.step > 0 ? &start : nullptr);
     run.summary["steps"] = steps;

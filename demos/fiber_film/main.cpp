@@ -232,10 +232,12 @@ int main(int argc, char* argv[])
     //    them), TSBDF's history and this record. TS's error tolerance: rtol 1e-4, and an
     //    absolute one 1e-4 of mu's undrained jump phi_i^2 (chi_f - chi_i) (mu's scale in kT,
     //    1e-2 by default; the displacements, of order 1 nm, are held by rtol). The first step
-    //    a tenth of the ramp: it resolves the step in T, and steps of 1e-5 (D/2)^2/D or less make
-    //    the tangent's conservation rows (shift ~ 1/dt) so much larger than its mobility rows
-    //    (D/h^2) that MUMPS delays pivots beyond its workspace (FACTOR_OUTMEMORY at 1e-12 s;
-    //    -fiber_film_mat_mumps_icntl_14 400 gets past it)
+    //    a tenth of the ramp: it resolves the step in T. Much shorter ones (1e-12 s, 1e-5 of
+    //    (D/2)^2/D) approach the undrained limit, where the mobility rows (D/h^2) vanish
+    //    against the coupling (shift ~ 1/dt): a saddle point, on which MUMPS, its rows and
+    //    columns already scaled, delays thousands of pivots beyond its workspace
+    //    (FACTOR_OUTMEMORY), and with a matching instead (mat_mumps_icntl_6 5) Newton stalls
+    //    at round-off above its tolerance
     char atol[32], first_step[32];
     std::snprintf(atol, sizeof atol, "%.6g", 1e-4 * gel.phi_i * gel.phi_i * std::abs(chi_f - chi_i));
     std::snprintf(first_step, sizeof first_step, "%.6g", p.ramp_time / 10);

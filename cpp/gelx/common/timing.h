@@ -26,6 +26,19 @@ public:
   TimedStage& operator=(const TimedStage&) = delete;
 };
 
+/// While alive, PETSc's log counts the time as assembly (a gelx event, added to SNES's
+/// residual and tangent evaluations by time_split): for evaluations outside any SNES, such as
+/// an arc-length predictor's tangent, which SNES's events do not see and time_split would
+/// otherwise count as "other". Not for evaluations inside a SNES callback (counted twice).
+class TimedAssembly
+{
+public:
+  TimedAssembly();
+  ~TimedAssembly();
+  TimedAssembly(const TimedAssembly&) = delete;
+  TimedAssembly& operator=(const TimedAssembly&) = delete;
+};
+
 /// While alive, PETSc does not log KSPSolve and PCSetUp: for solves nested in a solve whose
 /// events already time them (the arc-length system's solves with its wrapped tangent, inside
 /// the bordered system's KSPSolve), which time_split would otherwise count twice.
@@ -46,7 +59,7 @@ private:
 void start_timing();
 
 /// The split of `wall_time` (s, this rank's run so far) into mesh, assembly (the SNES residual
-/// and tangent evaluations), solve (the KSP solves and preconditioner set-ups: the
+/// and tangent evaluations, and those outside SNES a TimedAssembly times), solve (the KSP solves and preconditioner set-ups: the
 /// factorisations, those of SLEPc's spectral transformations too), stability,
 /// output and other (the rest: set-up, scene analysis, time stepping's own work), each the
 /// largest over the ranks; and the peak resident memory of the ranks (MiB: the sum over

@@ -221,9 +221,10 @@ void ArcLengthSystem::load_derivative(Vec f)
   GELX_PETSC(VecScale(f, 1.0 / (2 * h)));
 }
 
+void ArcLengthSystem::assemble_tangent() { _inner.tangent(_K); }
+
 void ArcLengthSystem::solve_tangent(Vec b, Vec y)
 {
-  _inner.tangent(_K);
   GELX_PETSC(KSPSetOperators(_ksp, _K, _K));
   GELX_PETSC(KSPSolve(_ksp, b, y));
   KSPConvergedReason reason;
@@ -334,7 +335,11 @@ ArcLength::ArcLength(MPI_Comm comm, NonlinearSystem& system,
 double ArcLength::tangent_direction(const PathState& state, double psi, Vec t)
 {
   // K dx/ds + f dlambda/ds = 0: the direction (-K^-1 f, 1), scaled to unit length
-  _bordered.load_derivative(_load.get());
+  {
+    const TimedAssembly assembly; // outside the corrector's SNES, whose events do not see it
+    _bordered.load_derivative(_load.get());
+    _bordered.assemble_tangent();
+  }
   _bordered.solve_tangent(_load.get(), t);
   const double norm = std::sqrt(dot(t, t) + psi * psi);
   GELX_PETSC(VecScale(t, -1.0 / norm));

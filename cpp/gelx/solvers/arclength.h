@@ -48,7 +48,9 @@ public:
   double load_factor() const { return _lambda; }
   /// f = dR/dlambda at the current state, in the wrapped system's layout. Collective.
   void load_derivative(Vec f);
-  /// Solve K y = b with the wrapped system's tangent at the current state (assembled anew).
+  /// Assemble the wrapped system's tangent K at the current state.
+  void assemble_tangent();
+  /// Solve K y = b with K as last assembled.
   void solve_tangent(Vec b, Vec y);
 
   Vec unknowns() override { return _x; }
@@ -80,7 +82,7 @@ public:
   void configure(SNES snes) const override;
 
   NonlinearSystem& inner() { return _inner; }
-  /// The wrapped system's tangent at the last tangent() or solve_tangent() (for eigenvalues).
+  /// The wrapped system's tangent at the last tangent() or assemble_tangent() (for eigenvalues).
   Mat inner_tangent() const { return _K; }
   /// Its number of negative eigenvalues, read from its factors (factored_negative_eigenvalues:
   /// for an LDL^T factorisation).

@@ -245,29 +245,25 @@ int main(int argc, char* argv[])
                               {{"ts_rtol", "1e-4"}, {"ts_atol", atol}, {"ts_dt", first_step}});
     gelx::TransientProblem transient(run.comm(), film, w_dot, forms.constant("shift"), set_time,
                                      p.end_time, "fiber_film_");
-    const gelx::PathState start = run.start_path(film);
     gelx::ProgressLine progress(
         run.comm(), {.load_name = "t",
                      .quantity = [&]
                      { return gelx::quantity_text("alpha_perp", run.summary["alpha_perp"]); }});
-    gelx::TransientRecorder record(run, results, transient, fields, progress, p.outputs,
-                                   p.end_time, start);
-    const int steps = transient.run(
-        [&](const gelx::TransientStep& s)
+    gelx::TransientRecorder recorder(run, results, transient, fields, progress, p.outputs,
+                                     run.start_path(film));
+    recorder.run(
+        [&](const gelx::TransientStep& s) -> gelx::TransientRecorder::Measured
         {
           gelx::copy_sub_function(*w, 0, *u);
           gelx::copy_sub_function(*w, 1, *mu);
           const auto [alpha_par, alpha_perp] = contraction();
           run.summary["min_J_minus_phi0"] = problem.admissibility_margin();
-          record(s,
-                 {{"alpha_par", alpha_par},
-                  {"alpha_perp", alpha_perp},
-                  {"anisotropy", alpha_par / alpha_perp},
-                  {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0},
-                  {"mu_midplane", midplane.value()}},
-                 {{"T", temperature(s.time)}});
-        },
-        start.step > 0 ? &start : nullptr);
-    run.summary["steps"] = steps;
+          return {{{"alpha_par", alpha_par},
+                   {"alpha_perp", alpha_perp},
+                   {"anisotropy", alpha_par / alpha_perp},
+                   {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0},
+                   {"mu_midplane", midplane.value()}},
+                  {{"T", temperature(s.time)}}};
+        });
   });
 }

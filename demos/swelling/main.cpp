@@ -352,19 +352,16 @@ int main(int argc, char* argv[])
     gelx::set_default_options("swelling_", {{"ts_rtol", "1e-4"}, {"ts_atol", atol}});
     gelx::TransientProblem transient(run.comm(), problem, w_dot, forms.constant("shift"),
                                      set_time, p.end_time, "swelling_");
-    const gelx::PathState start = run.start_path(problem);
-    gelx::TransientRecorder record(run, results, transient, fields, progress, p.outputs,
-                                   p.end_time, start);
-    const int steps = transient.run(
-        [&](const gelx::TransientStep& s)
+    gelx::TransientRecorder recorder(run, results, transient, fields, progress, p.outputs,
+                                     run.start_path(problem));
+    recorder.run(
+        [&](const gelx::TransientStep& s) -> gelx::TransientRecorder::Measured
         {
           gelx::copy_sub_function(*w, 0, *u);
           gelx::copy_sub_function(*w, 1, *mu);
-          record(s, {{"thickness", thickness()},
-                     {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0},
-                     {"front_depth", front_depth(s.time)}});
-        },
-        start.step > 0 ? &start : nullptr);
-    run.summary["steps"] = steps;
+          return {{{"thickness", thickness()},
+                   {"swelling_ratio", gelx::assemble_global_scalar(*volume) / V0},
+                   {"front_depth", front_depth(s.time)}}};
+        });
   });
 }

@@ -5,7 +5,6 @@
 #include <gelx/systems/mixed.h>
 
 #include <algorithm>
-#include <cmath>
 #include <petsc/private/tsimpl.h>
 
 namespace gelx
@@ -28,40 +27,6 @@ PetscErrorCode form_jacobian(TS, PetscReal t, Vec w, Vec w_dot, PetscReal shift,
 }
 
 } // namespace
-
-LogTimeOutputs::LogTimeOutputs(int count, double end_time, const nlohmann::json& scene)
-    : _count(count), _end_time(end_time), _first_time(scene.value("first_time", 0.0)),
-      _written(scene.value("outputs_written", 0))
-{
-}
-
-double LogTimeOutputs::output_time(int k) const
-{
-  return _count == 1 ? _end_time
-                     : _first_time * std::pow(_end_time / _first_time, double(k) / (_count - 1));
-}
-
-bool LogTimeOutputs::due(int step, double t)
-{
-  if (step == 1)
-    _first_time = t;
-  if (_written >= _count || t < output_time(_written) * (1 - 1e-12))
-    return false;
-  while (_written < _count && output_time(_written) <= t * (1 + 1e-12))
-    ++_written;
-  return true;
-}
-
-double LogTimeOutputs::progress(double t) const
-{
-  return t < _end_time ? std::log(t / _first_time) / std::log(_end_time / _first_time) : 1.0;
-}
-
-void LogTimeOutputs::save(nlohmann::json& scene) const
-{
-  scene["first_time"] = _first_time;
-  scene["outputs_written"] = _written;
-}
 
 TransientProblem::TransientProblem(MPI_Comm comm, NonlinearSystem& system,
                                    std::shared_ptr<dolfinx::fem::Function<double>> rate,

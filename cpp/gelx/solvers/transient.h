@@ -38,31 +38,6 @@ struct TransientStep
   }
 };
 
-/// When a transient writes its fields: at `count` times evenly spaced in log t from its first
-/// step's time t1 to the end T, t1 (T/t1)^(k/(count - 1)) for k = 0 ... count - 1 (one output:
-/// T), because a transient spans decades (a front's sqrt(t) start, the slow approach to
-/// equilibrium); and how far it has got, in log t. Its state goes into a checkpoint's scene
-/// record, so that a restarted run writes what the uninterrupted one would have.
-class LogTimeOutputs
-{
-public:
-  /// @param scene a restarted path's scene record (what save() wrote), or empty
-  LogTimeOutputs(int count, double end_time, const nlohmann::json& scene);
-  /// After the accepted step number `step` at time t: whether fields are due.
-  bool due(int step, double t);
-  /// How far the transient has got at time t, 0 to 1 in log t.
-  double progress(double t) const;
-  /// Its state into a checkpoint's scene record.
-  void save(nlohmann::json& scene) const;
-
-private:
-  double output_time(int k) const;
-  int _count;
-  double _end_time;
-  double _first_time = 0;
-  int _written = 0;
-};
-
 /// Integrates R(w, w'; t) = 0 from the system's current state at t = 0 to an end time.
 ///
 /// The system is a NonlinearProblem or a decorator of one (a MultipointConstraint: TS then
@@ -97,6 +72,7 @@ public:
   /// last step.
   int run(const std::function<void(const TransientStep&)>& observe,
           const PathState* resume = nullptr);
+  double end_time() const { return _end_time; }
   /// The integrator's state after the last accepted step into `state`. Collective.
   void save(PathState& state) const;
 

@@ -13,13 +13,18 @@ of the bistrip, stretched by 1/s before bonding, does; a != 0 makes a bilayer tw
 curls: a helix). The objective is a UFL functional of u and the design: here the distance of
 the equilibrium to a target displacement field plus a Tikhonov term that keeps s near a prior,
 
-    J = 1/2 int |u - u_target|^2 dX + regularisation/2 int (s - stretch_prior)^2 dX;
+    J = placement_weight/2 int |u - u_target|^2 dX + regularisation/2 int (s - stretch_prior)^2 dX;
+
+`distance` is the first integral alone, the distance reported whatever J is (a scene can set
+placement_weight to 0 and add a term UFL cannot write, gelx::Objective's sampled part: the
+design scene's `--objective centreline`, the helix detector's curvature and twist);
 
 a user writes another in its place (keeping the names), and FFCx derives what the adjoint needs
 (gelx::AdjointGradient, cpp/gelx/solvers/adjoint.h):
   residual, tangent           R(u; d) and dR/du, the equilibrium
   residual_d_prestretch       dR/dd: rows the displacement, columns the design (a bilinear form)
   objective                   J
+  distance                    its placement term, unweighted
   objective_d_state           dJ/du (a linear form on the displacement space)
   objective_d_prestretch      dJ/dd (a linear form on the design space)
   stress, psi                 Cauchy stress and energy density at the cell midpoints
@@ -34,6 +39,7 @@ G = ufl.Constant(mesh)
 K = ufl.Constant(mesh)
 regularisation = ufl.Constant(mesh)  # weight of the Tikhonov term (length^2 / stretch^2)
 stretch_prior = ufl.Constant(mesh)
+placement_weight = ufl.Constant(mesh)
 designs = ufl.FunctionSpace(mesh, ufl.VectorElement("DG", cell, 0, dim=2))
 V = ufl.FunctionSpace(mesh, ufl.VectorElement("Lagrange", cell, 2))
 u = ufl.Coefficient(V)
@@ -51,7 +57,8 @@ residual = ufl.derivative(psi * dx, u, ufl.TestFunction(V))
 tangent = ufl.derivative(residual, u, ufl.TrialFunction(V))
 residual_d_prestretch = ufl.derivative(residual, prestretch, ufl.TrialFunction(designs))
 
-objective = (ufl.inner(u - u_target, u - u_target) / 2
+distance = ufl.inner(u - u_target, u - u_target) / 2 * dx
+objective = (placement_weight * ufl.inner(u - u_target, u - u_target) / 2
              + regularisation / 2 * (stretch - stretch_prior)**2) * dx
 objective_d_state = ufl.derivative(objective, u, ufl.TestFunction(V))
 objective_d_prestretch = ufl.derivative(objective, prestretch, ufl.TestFunction(designs))
@@ -59,6 +66,6 @@ objective_d_prestretch = ufl.derivative(objective, prestretch, ufl.TestFunction(
 stress = materials.cauchy_stress(psi, F)
 det_F = ufl.det(F)
 forms = [residual, tangent, residual_d_prestretch, objective, objective_d_state,
-         objective_d_prestretch]
+         objective_d_prestretch, distance]
 expressions = [(stress, materials.centroid(cell)), (psi, materials.centroid(cell)),
                (det_F, materials.quadrature_points(cell, materials.quadrature_degree(2)))]

@@ -16,12 +16,17 @@ P = 2 pi |tau|/(kappa^2 + tau^2)). Checked against the closed form, the target R
   distort the section: the optimum's rms distance is 0.018 mm, 1.8 % of the thickness), so the
   helix is held to that order; measured 0.18 % (R) and 0.36 % (P) on this strip, 0.2 % and
   1.1 % on the README's;
+- with `--objective centreline` (the detector's curvature and twist per sample against the
+  helix's, its placement left free), R and P within 1e-3: that J asks for the rates alone,
+  which the 5 slabs of 2 layers can match along the middle 80 % (measured 2e-6 and 1.6e-5 when
+  TAO stops at |g| = 1e-3 |g0|); the placement objective's optimum on this strip (0.18 % and
+  0.36 % off) fails it, as would the option parsed but not applied;
 - the start, the narrow-strip theory's uniform prestretch, is not already there (its pitch is
   more than 10 % off: measured 46 %), so the agreement is the optimiser's doing; a design
   without the angle (no pitch at all) or with a wrong gradient fails the second check;
 - TAO stopped by its own test (reason > 0).
 
-usage: design_helix.py RUN_DIR
+usage: design_helix.py RUN_DIR [--objective centreline]
 """
 import json
 import pathlib
@@ -38,8 +43,9 @@ checks.relative("the target placement's helix radius (detector)", summary["targe
                 R, 5e-3)
 checks.relative("the target placement's helix pitch (detector)", summary["target_helix_pitch"],
                 P, 5e-3)
-checks.relative("the designed strip's helix radius", summary["helix_radius"], R, 2e-2)
-checks.relative("the designed strip's helix pitch", summary["helix_pitch"], P, 2e-2)
+tolerance = 1e-3 if sys.argv[2:] == ["--objective", "centreline"] else 2e-2
+checks.relative("the designed strip's helix radius", summary["helix_radius"], R, tolerance)
+checks.relative("the designed strip's helix pitch", summary["helix_pitch"], P, tolerance)
 start = abs(summary["start_helix_pitch"] - P) / P
 checks.require(f"the start's pitch is more than 10 % off ({start:.3g})", start > 0.1)
 checks.require(f"TAO stopped by its own test (reason {summary['optimizer_reason']})",

@@ -23,15 +23,6 @@ CentrelineSamples samples_from_layer_sums(const std::vector<double>& sums, doubl
 
 namespace
 {
-using Vec3 = std::array<double, 3>;
-Vec3 minus(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 cross(const Vec3& a, const Vec3& b)
-{
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 scaled(const Vec3& a, double s) { return {s * a[0], s * a[1], s * a[2]}; }
-Vec3 unit(const Vec3& a) { return scaled(a, 1 / std::sqrt(dot(a, a))); }
 
 /// A run of samples [first, last] of one sign of twist
 struct Run
@@ -60,33 +51,12 @@ CentrelineAnalysis analyse_centreline(const CentrelineSamples& samples, double m
   const int n = samples.Z.size();
   if (n < 3)
     throw std::invalid_argument("analyse_centreline: fewer than 3 samples");
-  // Deformed arc length, the unit tangent and the frame (t, d1, d2)
-  std::vector<double> s(n, 0.0);
-  for (int k = 1; k < n; ++k)
-  {
-    const Vec3 ds = minus(samples.centre[k], samples.centre[k - 1]);
-    s[k] = s[k - 1] + std::sqrt(dot(ds, ds));
-  }
-  std::vector<Vec3> t(n), d1(n), d2(n);
-  for (int k = 0; k < n; ++k)
-  {
-    const int a = std::max(k - 1, 0), b = std::min(k + 1, n - 1);
-    t[k] = unit(minus(samples.centre[b], samples.centre[a]));
-    d1[k] = unit(minus(samples.width[k], scaled(t[k], dot(samples.width[k], t[k]))));
-    d2[k] = cross(t[k], d1[k]);
-  }
+  const CentrelineRates<double> rates(samples.centre, samples.width);
+  const std::vector<double>& s = rates.s;
   CentrelineAnalysis result;
-  result.frame = d1;
-  result.curvature.resize(n);
-  result.twist.resize(n);
-  for (int k = 0; k < n; ++k)
-  {
-    const int a = std::max(k - 1, 0), b = std::min(k + 1, n - 1);
-    const double ds = s[b] - s[a];
-    const Vec3 dt = minus(t[b], t[a]);
-    result.curvature[k] = std::sqrt(dot(dt, dt)) / ds;
-    result.twist[k] = dot(minus(d1[b], d1[a]), d2[k]) / ds;
-  }
+  result.frame = rates.d1;
+  result.curvature = rates.curvature;
+  result.twist = rates.twist;
 
   // Runs of one sign, then the noise merged away: the run of least frame rotation first
   const auto frame_turns = [&](const Run& r)

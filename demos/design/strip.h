@@ -8,6 +8,7 @@
 #include "centreline.h"
 
 #include <array>
+#include <functional>
 #include <dolfinx/fem/Function.h>
 #include <gelx/io/mesh.h>
 #include <gelx/solvers/adjoint.h>
@@ -46,8 +47,15 @@ struct DesignStripGeometry
 /// design_lower, designed likewise by the next parameters_per_layer() ones. s < 1 in the upper
 /// layer curls the strip up, by a curvature of about 3 (1 - s) / (2 thickness) for small
 /// misfits (Timoshenko's bimetal with equal layers); a != 0 twists it as it curls, into a
-/// helix. The objective is the distance to a target displacement field,
-/// 1/2 int |u - u_target|^2 dX, plus a Tikhonov term regularisation/2 int (s - 1)^2 dX.
+/// helix. The objective (DesignObjective) is the distance to a target displacement field,
+/// 1/2 int |u - u_target|^2 dX, or the distance of the centreline's curvature and twist to a
+/// helix's (centreline_objective()), plus a Tikhonov term regularisation/2 int (s - 1)^2 dX.
+enum class DesignObjective
+{
+  placement, ///< the distance to the target displacement (a form: forms/design_strip.py)
+  centreline ///< the detector's curvature and twist against a helix's (sampled)
+};
+
 class DesignStrip
 {
 public:
@@ -74,8 +82,22 @@ public:
   void solve_from_rest(NonlinearSystem& system, NewtonSolver& newton,
                        const std::vector<double>& p, double angle = 0);
 
-  /// The adjoint gradient of the objective on `system` (this problem or a decorator of it).
-  std::unique_ptr<AdjointGradient> adjoint(NonlinearSystem& system) const;
+  /// The adjoint gradient of an objective on `system` (this problem or a decorator of it);
+  /// the centreline's against the helix of curvature `curvature` and twist `twist`.
+  std::unique_ptr<AdjointGradient> adjoint(NonlinearSystem& system,
+                                           DesignObjective objective = DesignObjective::placement,
+                                           double curvature = 0, double twist = 0);
+
+  /// The helix detector's rates as an objective (UFL cannot write it: it reads a few nodal
+  /// values): J = 1/2 sum_k h [(kappa_k - curvature)^2 + (tau_k - twist)^2] over the node
+  /// layers k in the middle 80 % of the strip (h their spacing; the clamp's and the free
+  /// end's boundary layers left out, as the detector's mean), kappa_k and tau_k the
+  /// curvature and twist of CentrelineRates at the samples of centreline(). Its dJ/du is
+  /// exact: a dual number through CentrelineRates per sampled value, then the samples'
+  /// linear dependence on the nodes (a centre the mean of its layer's nodes, a width vector
+  /// the difference of two nodes).
+  std::pair<std::function<double()>, std::function<void(Vec)>>
+  centreline_objective(double curvature, double twist) const;
 
   /// The strip deformed by u (the displacement, or the target), its centreline sampled at
   /// every node layer x = const: the centroid of the section's nodes and the width vector of
@@ -84,6 +106,11 @@ public:
   CentrelineSamples centreline(const dolfinx::fem::Function<double>& u) const;
 
 private:
+  /// f(n, layer, edge) for every owned node n of the displacement's space: its node layer
+  /// x = const and whether it is the interface's edge y = 0 (edge 0), y = width (edge 1) or
+  /// neither (-1)
+  void for_each_owned_node(const std::function<void(std::int32_t, int, int)>& f) const;
+  int node_layers() const { return 2 * _geometry.cells[0] + 1; } // Q2 nodes
   DesignStripGeometry _geometry;
   TaggedMesh _mesh;
   std::shared_ptr<dolfinx::fem::Function<double>> _u, _u_target, _prestretch;

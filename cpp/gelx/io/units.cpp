@@ -75,6 +75,7 @@ const std::map<std::string, Dimension>& dimensions()
       {"slenderness", D::none}, {"area_ratio", D::none},
       // Inverse design: the distance to the target, the helix asked for and formed, the cost
       {"rms_distance", D::length}, {"rms_distance_start", D::length},
+      {"rms_rate_error", D::per_length},
       {"target_radius", D::length}, {"target_pitch", D::length},
       {"target_helix_radius", D::length}, {"target_helix_pitch", D::length},
       {"start_helix_radius", D::length}, {"start_helix_pitch", D::length},

@@ -32,7 +32,11 @@ AdjointGradient::~AdjointGradient()
   MatDestroy(&_residual_d_design_matrix);
 }
 
-double AdjointGradient::value() const { return assemble_global_scalar(*_objective.value); }
+double AdjointGradient::value() const
+{
+  return assemble_global_scalar(*_objective.value)
+         + (_objective.sampled_value ? _objective.sampled_value() : 0.0);
+}
 
 Vec AdjointGradient::create_design_vector() const
 {
@@ -49,6 +53,8 @@ void AdjointGradient::gradient(Vec g)
 
   // The adjoint: K^T lambda = P^T dJ/du at the equilibrium
   assemble_global_vector(*_objective.d_state, dJ_du.get());
+  if (_objective.add_sampled_d_state)
+    _objective.add_sampled_d_state(dJ_du.get());
   _system.restrict_vector(dJ_du.get(), rhs.get());
   _system.tangent(_tangent);
   GELX_PETSC(KSPSetOperators(_ksp, _tangent, _tangent));

@@ -7,6 +7,7 @@
 
 #include <dolfinx/fem/Form.h>
 #include <dolfinx/fem/Function.h>
+#include <functional>
 #include <memory>
 #include <petscksp.h>
 #include <string>
@@ -22,6 +23,12 @@ struct Objective
   std::shared_ptr<const dolfinx::fem::Form<double>> d_state; ///< dJ/du, on the problem's space
   /// dJ/ds at fixed u, a linear form on the design space; nullptr where J has no explicit s
   std::shared_ptr<const dolfinx::fem::Form<double>> d_design;
+  /// A term UFL cannot write, a function of a few sampled nodal values of u (demos/design:
+  /// the helix detector's curvature and twist of the centreline), added to the forms': its
+  /// value at the system's current state (collective), and its dJ/du added into a vector of
+  /// the problem's space (owned entries, collective). Both empty where J has none.
+  std::function<double()> sampled_value;
+  std::function<void(Vec)> add_sampled_d_state;
 };
 
 /// dJ/ds of J(u(s), s), u(s) the equilibrium R(u; s) = 0 of a NonlinearSystem at the design s

@@ -74,7 +74,7 @@ void DesignStrip::solve_from_rest(NonlinearSystem& system, NewtonSolver& newton,
 {
   GELX_PETSC(VecSet(system.unknowns(), 0.0));
   system.unknowns_changed();
-  LoadStepper(system, newton, {},
+  LoadStepper(system, newton, {.dt = 0.025, .secant_predictor = true},
               [&](double t)
               {
                 // the stretches from 1 (stress free whatever the angle) to theirs

@@ -149,7 +149,7 @@ void DesignOptimizer::solve_forward_by_steps()
   // s(t) = s_last + t (s_new - s_last), from the last equilibrium
   const OwnedVec target = copy_of(_design_vec);
   _system.set_state(_last_state.get());
-  LoadStepper(_system, _newton, {},
+  LoadStepper(_system, _newton, {.secant_predictor = true},
               [&](double t)
               {
                 GELX_PETSC(VecAXPBYPCZ(_design_vec, 1 - t, t, 0.0, _last_design.get(),

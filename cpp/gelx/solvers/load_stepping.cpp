@@ -23,6 +23,9 @@ void LoadSteppingOptions::bind(Parameters& p)
   p.bind("load stepping", "max_cutbacks", max_cutbacks,
          "step cut-backs allowed within one step (0 disables cut-back)",
          [](int v) { return v >= 0 ? "" : "must not be negative"; });
+  p.bind("load stepping", "secant_predictor", secant_predictor,
+         "start each step from the last two states extrapolated to its load (a secant "
+         "predictor) instead of from the last one");
 }
 
 void LoadSteppingOptions::check() const
@@ -47,6 +50,9 @@ void LoadStepper::run(PathState& state, const std::vector<StepObserver>& observe
 {
   const bool root = dolfinx::MPI::rank(PetscObjectComm((PetscObject)_newton.snes())) == 0;
   OwnedVec saved(_system.create_vector()); // the last completed step, restored after a failure
+  // The step completed before it and its load, for the secant predictor (none yet: -1)
+  OwnedVec before(_system.create_vector()), guess(_system.create_vector());
+  double before_load = -1;
   double dt = state.step_size > 0 ? state.step_size : _options.dt;
   int cutbacks = 0;
   // A continued path (a restart) starts with the loads of its last point, which a new run's
@@ -64,6 +70,13 @@ void LoadStepper::run(PathState& state, const std::vector<StepObserver>& observe
       dt = t_end - t;
     GELX_PETSC(VecCopy(_system.unknowns(), saved.get()));
     _apply_load(t + dt);
+    if (_options.secant_predictor && before_load >= 0)
+    {
+      // guess = saved + dt (saved - before) / (t - before_load)
+      GELX_PETSC(VecWAXPY(guess.get(), -1.0, before.get(), saved.get()));
+      GELX_PETSC(VecAYPX(guess.get(), dt / (t - before_load), saved.get()));
+      _system.set_state(guess.get());
+    }
     NewtonReport report = _newton.solve(_system);
     if (!report.converged)
     {
@@ -90,6 +103,8 @@ void LoadStepper::run(PathState& state, const std::vector<StepObserver>& observe
       ++state.cutbacks;
       continue;
     }
+    GELX_PETSC(VecCopy(saved.get(), before.get()));
+    before_load = t;
     state.load = t + dt;
     ++state.step;
     if (report.iterations <= _options.easy_iterations)

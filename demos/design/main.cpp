@@ -51,11 +51,14 @@ namespace
 struct HelixTarget
 {
   double radius, pitch, width, thickness;
+  /// The helix's curvature kappa = R / (R^2 + c^2) and torsion tau = c / (R^2 + c^2), c = P / 2 pi
+  double curvature() const { return radius / (radius * radius + c() * c()); }
+  double torsion() const { return c() / (radius * radius + c() * c()); }
+  double c() const { return pitch / (2 * M_PI); }
   /// x*(X) - X at X
   std::array<double, 3> displacement(const double* X) const
   {
-    const double c = pitch / (2 * M_PI), kappa = radius / (radius * radius + c * c),
-                 tau = c / (radius * radius + c * c), omega = std::hypot(kappa, tau);
+    const double kappa = curvature(), tau = torsion(), omega = std::hypot(kappa, tau);
     // The rotation by angle omega X1 about the fixed axis n = (tau, -kappa, 0) / omega
     const std::array<double, 3> n = {tau / omega, -kappa / omega, 0};
     const double angle = omega * X[0], cs = std::cos(angle), sn = std::sin(angle);
@@ -203,7 +206,7 @@ int main(int argc, char* argv[])
       double kappa = 0, tau = 0;
       int count = 0;
       for (std::size_t i = 0; i < samples.Z.size(); ++i)
-        if (samples.Z[i] >= 0.1 * g.length && samples.Z[i] <= 0.9 * g.length)
+        if (strip.measured(samples.Z[i]))
         {
           kappa += analysis.curvature[i];
           tau += analysis.twist[i];
@@ -233,13 +236,12 @@ int main(int argc, char* argv[])
     // 4. Minimise J by BLMVM with the adjoint gradient: of the distance to the placement, or
     //    of the centreline's rates to the helix's curvature and torsion (the rms distance to
     //    the placement reported in either case)
-    const double c = pitch / (2 * M_PI);
     const bool centreline = objective == "centreline";
     const std::unique_ptr<gelx::AdjointGradient> adjoint = strip.adjoint(
         strip.problem(),
         centreline ? gelx::scenes::DesignObjective::centreline
                    : gelx::scenes::DesignObjective::placement,
-        radius / (radius * radius + c * c), c / (radius * radius + c * c));
+        helix.curvature(), helix.torsion());
     const auto distance = strip.forms().form(form_design_strip_distance);
     gelx::DesignOptimizer optimizer(strip.problem(), newton, *adjoint, strip.prestretch(), m,
                                     [&](const double* X, int c)
@@ -302,7 +304,7 @@ int main(int argc, char* argv[])
                                 {"helix_pitch", shape.pitch},
                                 {"gradient_norm_ratio", gradient_ratio}};
           if (centreline) // the rms of the rates' errors over the middle 80 %
-            row["rms_rate_error"] = std::sqrt(2 * it.objective / (0.8 * g.length));
+            row["rms_rate_error"] = std::sqrt(2 * it.objective / strip.measured_length());
           row.update(totals);
           row["wall_time"] = wall_time;
           results.append_step(row);

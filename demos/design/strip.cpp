@@ -149,16 +149,15 @@ CentrelineSamples DesignStrip::centreline(const fem::Function<double>& displacem
 std::pair<std::function<double()>, std::function<void(Vec)>>
 DesignStrip::centreline_objective(double curvature, double twist) const
 {
-  const double length = _geometry.length;
   // J of the samples, T = double or Dual
-  auto objective = [=](const auto& centre, const auto& width, const std::vector<double>& Z)
+  auto objective = [=, this](const auto& centre, const auto& width, const std::vector<double>& Z)
   {
     using T = std::decay_t<decltype(centre[0][0])>;
     const CentrelineRates<T> rates(centre, width);
     const double h = Z[1] - Z[0];
     T J = 0;
     for (std::size_t k = 0; k < Z.size(); ++k)
-      if (Z[k] >= 0.1 * length && Z[k] <= 0.9 * length)
+      if (measured(Z[k]))
       {
         const T dk = rates.curvature[k] - curvature, dt = rates.twist[k] - twist;
         J = J + 0.5 * h * (dk * dk + dt * dt);

@@ -82,8 +82,20 @@ public:
   void solve_from_rest(NonlinearSystem& system, NewtonSolver& newton,
                        const std::vector<double>& p, double angle = 0);
 
+  /// Whether the reference position Z along the strip is in the span where its helix is
+  /// measured: the middle 80 %, away from the clamp's and the free end's boundary layers
+  /// (the detector's mean in demos/design, and the centreline objective)
+  bool measured(double Z) const
+  {
+    return Z >= 0.1 * _geometry.length && Z <= 0.9 * _geometry.length;
+  }
+  /// The length of that span
+  double measured_length() const { return 0.8 * _geometry.length; }
+
   /// The adjoint gradient of an objective on `system` (this problem or a decorator of it);
-  /// the centreline's against the helix of curvature `curvature` and twist `twist`.
+  /// the centreline's against the helix of curvature `curvature` and twist `twist`. It sets
+  /// the objective form's placement_weight (1 for the placement, 0 for the centreline), so
+  /// one strip serves one objective at a time.
   std::unique_ptr<AdjointGradient> adjoint(NonlinearSystem& system,
                                            DesignObjective objective = DesignObjective::placement,
                                            double curvature = 0, double twist = 0);

@@ -20,7 +20,13 @@ its surface) against what holds whatever the fold's details:
    homogeneous softening, which would move the valley with the far field), and beyond it
    the flanks meet the plane x = 0 (self-contact) at a lower swelling ratio than the onset
    (the snap-back of a subcritical instability: a creased state exists below the swelling
-   ratio at which the flat, imperfect surface loses it).
+   ratio at which the flat, imperfect surface loses it). The surface's contact with that
+   plane keeps every point of the path off it (fold_gap >= -1e-9 H: the rows of a node held
+   on the plane are solved to Newton's tolerance), and the path ends where they touch
+   (fold_gap <= 1e-6 H, the scene's test). Without the contact the path steps through the
+   plane (measured: -3.0e-5 H at the last point); with it but without the arc-length's
+   restoring of the contact's active set after a failed attempt (gelx::CompletedPoint), no
+   attempt after the first that touches converges and the run fails.
 4. summary.json's time split: no part negative (the continuation's solves with the wrapped
    tangent, nested in the bordered system's, counted once: before, "other" was -1.6 s), and
    every evaluation of the continuation counted where it belongs: "other" (set-up, the
@@ -101,6 +107,11 @@ contact = summary.get("self_contact", {}).get("swelling_ratio", math.inf)
 checks.require(f"the flanks meet the plane x = 0 at h/H = {contact:.4g}, below the onset's "
                f"{float(onset['swelling_ratio']):.4g}",
                contact < float(onset["swelling_ratio"]))
+gaps = [float(r["fold_gap"]) for r in rows]
+checks.require(f"no point of the path through the plane x = 0: smallest fold_gap "
+               f"{min(gaps):.2e} H (at least -1e-9 H)", min(gaps) >= -1e-9)
+checks.require(f"the path ends where the flanks touch: fold_gap {gaps[-1]:.2e} H (at most "
+               f"1e-6 H)", gaps[-1] <= 1e-6)
 checks.time_split(summary)
 other = summary["time_split"]["other"] / summary["wall_time"]
 checks.require(f"'other' is {100 * other:.2g} % of the wall time (at most 5 %)", other <= 0.05)

@@ -24,8 +24,9 @@
 // follows the path through the limit point where the fold snaps in, and the inertia of each
 // tangent counts the unstable modes. The run records per point the far-field swelling ratio
 // h/H (at x = W), the valley's depth below it, and the gap between the surface and the plane
-// x = 0, which closes when the fold's flanks meet: there the path stops (going on needs the
-// surface's contact with that plane).
+// x = 0, which closes when the fold's flanks meet. The surface's frictionless contact with
+// that plane (gelx::RigidPlaneContact) keeps the path off it, and the path stops where the
+// flanks touch (what going on needs: demos/crease/README.md).
 
 #include "swelling.h"
 
@@ -36,6 +37,7 @@
 #include <gelx/io/progress.h>
 #include <gelx/solvers/arclength.h>
 #include <gelx/systems/boundary.h>
+#include <gelx/systems/contact.h>
 #include <gelx/systems/forms.h>
 #include <gelx/systems/mixed.h>
 #include <gelx/systems/problem.h>
@@ -214,8 +216,13 @@ int main(int argc, char* argv[])
                                              {"psi", text(scale)},
                                              {"rtol", "1e-7"},
                                              {"stability", "inertia"}});
-    gelx::ArcLength continuation(run.comm(), problem, set_load);
-    gelx::PathState path = run.start_path(problem);
+    // The fold's flanks meet at x = 0, where the surface meets its mirror image: the surface's
+    // contact with that plane keeps every point of the path off it, so the path approaches
+    // the touch (its arc length cut back at the plane) instead of stepping through it
+    gelx::RigidPlaneContact fold(problem, U, *geo.facet_tags, geo.tag("z_max"), 0, +1);
+    constexpr double touching = 1e-6; // a gap below this fraction of H: the flanks touch
+    gelx::ArcLength continuation(run.comm(), fold, set_load);
+    gelx::PathState path = run.start_path(fold);
     gelx::copy_sub_function(*w, 0, *u); // a restarted run's last point, for the stop test
     Surface last = surface();
     continuation.run(
@@ -258,12 +265,12 @@ int main(int argc, char* argv[])
          run.checkpoints()},
         [&](const gelx::StepRecord& pt)
         {
-          if (last.gap > 0)
+          if (last.gap > touching * p.H)
             return pt.load >= 1;
           if (dolfinx::MPI::rank(run.comm()) == 0)
             std::printf("gelx-crease: the fold's flanks meet the plane x = 0 at step %d "
-                        "(chi = %.6g, h/H = %.6g); the path stops here: going on needs the "
-                        "surface's contact with that plane\n",
+                        "(chi = %.6g, h/H = %.6g); the path stops here (what going on needs: "
+                        "demos/crease/README.md)\n",
                         pt.step, chi_at(pt.load), last.far / p.H);
           run.summary["self_contact"] = {{"chi", chi_at(pt.load)},
                                          {"swelling_ratio", last.far / p.H}};

@@ -409,7 +409,9 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
     if (stop(last))
       return;
   }
-  OwnedVec x0(_system.create_vector()), t(_system.create_vector());
+  CompletedPoint point(_system); // the last point, restored after a failed attempt
+  Vec x0 = point.unknowns();
+  OwnedVec t(_system.create_vector());
   OwnedVec bordered(_bordered.create_vector()), last_point(_bordered.create_vector());
   // The predictor's direction at the current point, along the path's tangent or along the
   // crossing branch's mode; its solve factorises the tangent there, whose inertia is then
@@ -432,7 +434,7 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
   while (state.step < max_steps)
   {
     const auto start = std::chrono::steady_clock::now();
-    GELX_PETSC(VecCopy(_system.unknowns(), x0.get()));
+    point.save();
     const double l0 = state.load;
     int cutbacks = 0;
     NewtonReport report;
@@ -443,16 +445,17 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
                                  PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
     while (true)
     {
-      GELX_PETSC(VecWAXPY(_system.unknowns(), ds, t.get(), x0.get()));
+      GELX_PETSC(VecWAXPY(_system.unknowns(), ds, t.get(), x0));
       _bordered.pack(_system.unknowns(), l0 + ds * t_l, bordered.get());
-      _bordered.set_constraint(x0.get(), l0, ds, psi);
-      _bordered.pack(x0.get(), l0, last_point.get());
+      _bordered.set_constraint(x0, l0, ds, psi);
+      _bordered.pack(x0, l0, last_point.get());
       _bordered.set_state(bordered.get());
       report = _newton.correct(_bordered, last_point.get());
       if (report.converged)
         break;
       // Failed: back to the last point with half the arc length
-      _bordered.pack(x0.get(), l0, bordered.get());
+      point.restore();
+      _bordered.pack(x0, l0, bordered.get());
       _bordered.set_state(bordered.get());
       ds *= 0.5;
       ++cutbacks;
@@ -471,7 +474,7 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
     // The step's direction (dx/ds, dlambda/ds) orients the next predictor
     if (!state.direction)
       state.direction.reset(_system.create_vector());
-    GELX_PETSC(VecWAXPY(state.direction.get(), -1.0, x0.get(), _system.unknowns()));
+    GELX_PETSC(VecWAXPY(state.direction.get(), -1.0, x0, _system.unknowns()));
     GELX_PETSC(VecScale(state.direction.get(), 1.0 / ds));
     const double previous_load_direction = state.load_direction;
     state.load_direction = (lambda - l0) / ds;

@@ -49,7 +49,7 @@ void LoadStepper::run(const StepObserver& observer)
 void LoadStepper::run(PathState& state, const std::vector<StepObserver>& observers)
 {
   const bool root = dolfinx::MPI::rank(PetscObjectComm((PetscObject)_newton.snes())) == 0;
-  OwnedVec saved(_system.create_vector()); // the last completed step, restored after a failure
+  CompletedPoint saved(_system); // the last completed step, restored after a failure
   // The step completed before it and its load, for the secant predictor (none yet: -1)
   OwnedVec before(_system.create_vector()), guess(_system.create_vector());
   double before_load = -1;
@@ -68,19 +68,19 @@ void LoadStepper::run(PathState& state, const std::vector<StepObserver>& observe
     // Stretch the last step a little rather than leave a sliver of load for an extra step
     if (t + 1.25 * dt >= t_end)
       dt = t_end - t;
-    GELX_PETSC(VecCopy(_system.unknowns(), saved.get()));
+    saved.save();
     _apply_load(t + dt);
     if (_options.secant_predictor && before_load >= 0)
     {
       // guess = saved + dt (saved - before) / (t - before_load)
-      GELX_PETSC(VecWAXPY(guess.get(), -1.0, before.get(), saved.get()));
-      GELX_PETSC(VecAYPX(guess.get(), dt / (t - before_load), saved.get()));
+      GELX_PETSC(VecWAXPY(guess.get(), -1.0, before.get(), saved.unknowns()));
+      GELX_PETSC(VecAYPX(guess.get(), dt / (t - before_load), saved.unknowns()));
       _system.set_state(guess.get());
     }
     NewtonReport report = _newton.solve(_system);
     if (!report.converged)
     {
-      _system.set_state(saved.get());
+      saved.restore();
       if (cutbacks == _options.max_cutbacks
           || dt * _options.cut < _options.dt_min * (1 - 1e-12))
       {
@@ -103,7 +103,7 @@ void LoadStepper::run(PathState& state, const std::vector<StepObserver>& observe
       ++state.cutbacks;
       continue;
     }
-    GELX_PETSC(VecCopy(saved.get(), before.get()));
+    GELX_PETSC(VecCopy(saved.unknowns(), before.get()));
     before_load = t;
     state.load = t + dt;
     ++state.step;

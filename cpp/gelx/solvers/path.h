@@ -3,6 +3,7 @@
 /// What load stepping and arc-length continuation share: the explicit state of a path, the
 /// record of one step, and the observers that see every step.
 
+#include <gelx/common/petsc_utils.h>
 #include <gelx/solvers/newton.h>
 #include <cmath>
 #include <functional>
@@ -32,6 +33,38 @@ struct VecDestroyer
 using OwnedVec = std::unique_ptr<_p_Vec, VecDestroyer>;
 /// A copy of `v` (same layout and values) that the caller owns. Collective.
 OwnedVec copy_of(Vec v);
+
+/// The last completed point of a path, which a failed attempt returns to: the system's
+/// unknowns and its history (NonlinearSystem::save_history). The history matters because a
+/// failed attempt's iterates commit theirs: a contact node that one of them pressed onto the
+/// plane would stay held there, at a point where it is off it (measured on the crease's
+/// self-contact: every shorter attempt then started from that jump and failed). Collective.
+class CompletedPoint
+{
+public:
+  explicit CompletedPoint(NonlinearSystem& system)
+      : _system(system), _unknowns(system.create_vector()), _history(system.create_vector())
+  {
+  }
+  /// Keep the system's current state
+  void save()
+  {
+    GELX_PETSC(VecCopy(_system.unknowns(), _unknowns.get()));
+    GELX_PETSC(VecZeroEntries(_history.get()));
+    _system.save_history(_history.get());
+  }
+  /// Set the system back to the kept state
+  void restore()
+  {
+    _system.set_state(_unknowns.get());
+    _system.load_history(_history.get());
+  }
+  Vec unknowns() const { return _unknowns.get(); }
+
+private:
+  NonlinearSystem& _system;
+  OwnedVec _unknowns, _history;
+};
 
 /// Where a path is: with the system's unknowns, everything a driver needs to take the next
 /// step, so that a path can be saved after any step and continued from it (checkpoint.h).

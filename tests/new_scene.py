@@ -1,5 +1,6 @@
 """`./gelx new` round trip, as docs/new-scene.md tells it, in a copy of the source tree with a
-build folder of its own (the checkout is not touched):
+build folder of its own (the checkout is not touched; the library's objects come from ccache's
+cache of the checkout's build, so the copy compiles the scenes' forms and links):
 
 1. `./gelx new cyl` makes demos/cyl and forms/cyl.py (exit code 0); a second time it refuses,
    in one line with exit code 1.
@@ -31,7 +32,10 @@ from fields import read_table  # noqa: E402  (demos/fields.py)
 
 work = pathlib.Path(sys.argv[1])
 source = pathlib.Path(__file__).resolve().parents[1]
-tree, build = work / "tree", work / "build"
+# The copy's build folder inside it, where the checkout has its own: ccache (CMakeLists.txt) then
+# hashes the copy's compile commands as the checkout's and compiles none of the library again
+tree = work / "tree"
+build = tree / "build"
 checks = Checks()
 shutil.rmtree(work, ignore_errors=True)
 shutil.copytree(source, tree, ignore=shutil.ignore_patterns(".git", "build", "results"))

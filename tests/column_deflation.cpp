@@ -31,6 +31,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <gelx/solvers/deflation.h>
 #include <gelx/common/petsc_utils.h>
@@ -64,6 +65,15 @@ struct Expected
 
 int main(int argc, char* argv[])
 {
+  // The checks are at 1.2 and 1.6: a run ending elsewhere would check less than it says
+  const bool given = argc > 1 && argv[1][0] != '-';
+  char* end = nullptr;
+  const double last_load = given ? std::strtod(argv[1], &end) : 1.6;
+  if (given && (*end != '\0' || (last_load != 1.2 && last_load != 1.6)))
+  {
+    std::fprintf(stderr, "test_column_deflation: LAST_LOAD is 1.2 or 1.6, not %s\n", argv[1]);
+    return 1;
+  }
   SlepcInitialize(&argc, &argv, nullptr, nullptr);
   int status;
   {
@@ -87,7 +97,6 @@ int main(int argc, char* argv[])
     // Deflated continuation from the straight column at 0.95 P_cr1 to 1.6 P_cr1, in steps
     // refined after each critical load (where the bent branches rise steeply); new branches
     // are sought from the previous load's solutions perturbed either way in x and in y
-    const double last_load = argc > 1 && argv[1][0] != '-' ? std::stod(argv[1]) : 1.6;
     std::vector<double> loads;
     for (double load : {0.95, 1.01, 1.03, 1.06, 1.1, 1.15, 1.2, 1.3, 1.4, 1.45, 1.47, 1.5, 1.55,
                         1.6})
@@ -143,7 +152,7 @@ int main(int argc, char* argv[])
     for (const double load : {1.2, 1.6})
     {
       if (load > last_load)
-        continue;
+        continue; // the 2-rank run ends at 1.2 on purpose (usage above)
       std::vector<Expected> expected = {{"straight", -1, 0, 1, 0},
                                         {"+x", 0, 1, 0, load},
                                         {"-x", 0, -1, 0, load}};

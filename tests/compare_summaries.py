@@ -42,6 +42,14 @@ args = parser.parse_args()
 
 a, b = (json.load(open(p)) for p in (args.a, args.b))
 checks = Checks()
+# A key one run lacks (a run stopped before it, or a misspelt name) is a failed check with its
+# name, not a traceback
+named = set(args.keys) | {key for key, _ in args.ratio} | set(args.fewer)
+missing = [f"{key} (not in {path})" for key in sorted(named)
+           for run, path in ((a, args.a), (b, args.b)) if key not in run]
+if missing:
+    checks.require("keys in both summaries: " + ", ".join(missing), False)
+    checks.finish()
 checks.require(f"both runs completed ({a.get('status')}, {b.get('status')}) with "
                f"{a['mpi_ranks']} and {b['mpi_ranks']} ranks",
                all(str(run.get("status")).startswith("completed") for run in (a, b)))

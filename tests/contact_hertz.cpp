@@ -132,6 +132,77 @@ Pressed press(MPI_Comm comm, double h_contact, int quarters, gelx::ContactMethod
   p.wall_time = MPI_Wtime() - start;
   return p;
 }
+
+/// The quarter's force error shrinks from the coarsest mesh to the finest, and the patch's edge
+/// by the gap law stays on Hertz's radius on every mesh.
+void check_refinement(gelx::test::Checks& checks, const std::map<double, Pressed>& quarter,
+                      const std::vector<double>& force_errors, double a_hertz)
+{
+  checks.require("the force error shrinks under refinement ("
+                     + std::to_string(force_errors.front()) + " -> "
+                     + std::to_string(force_errors.back()) + ")",
+                 force_errors.back() < force_errors.front());
+
+  // The patch's edge inside the element (gelx::patch_edge_by_gap_law): Hertz's gap opens
+  // like (r - a)^(3/2) outside the patch, the law the estimator assumes, so along the trace
+  // of the plane y = 0 it must find Hertz's radius on every mesh, to within the 2 % by which
+  // the finite neo-Hookean body's patch differs from Hertz's (the area's radius above: +1.9 %
+  // on the finest mesh, +1.4 % on h_contact = 0.014), and vary across the meshes by under
+  // 1 % of a, where the node spacing is a/3.5 to a/7. The level set's sign change on the
+  // same nodes (patch_edge_by_level_set), resolved to the spacing, misses both (measured:
+  // +2.8 %, -0.6 %, +0.1 %, a spread of 3.4 %; the gap law: +1.05 %, +0.94 %, +1.66 %).
+  double lowest = INFINITY, highest = -INFINITY;
+  for (const auto& [h, p] : quarter)
+  {
+    checks.relative("h_contact = " + std::to_string(h)
+                        + ": the patch's edge on y = 0 by the gap's 3/2 law against Hertz",
+                    p.radius_gap_law, a_hertz, 0.02);
+    lowest = std::min(lowest, p.radius_gap_law);
+    highest = std::max(highest, p.radius_gap_law);
+  }
+  checks.absolute("the gap law's edge: spread over the three meshes / a",
+                  (highest - lowest) / a_hertz, 0, 0.01);
+}
+
+/// PETSc's bound-constrained Newton (SNES VI) against the active set, on the coarsest mesh.
+void check_vi_against_active_set(MPI_Comm comm, gelx::test::Checks& checks,
+                                 const Pressed& coarsest)
+{
+  // The comparison holds on any mesh; the finest would double the test's time. Both solve
+  // the same discrete complementarity problem, each to |R| <= 1e-10 |R0| on the rows off the
+  // plane (the VI's norm leaves out the rows held at the bound, the active set's rows there
+  // are u_i - u_i* = 0): 1e-8 as for the half model (check_half_against_quarter). Only the same active set gives
+  // agreement at that level; a node in tension left on the plane, or a node held off it,
+  // changes the solution at the order of its force.
+  const Pressed vi = press(comm, 0.04, 1, gelx::ContactMethod::vi);
+  checks.absolute("coarsest mesh, vi (" + describe(vi) + "): largest penetration / d",
+                  vi.penetration / d_max, 0, 1e-10);
+  checks.relative("vi against the active set: force", vi.force, coarsest.force, 1e-8);
+  checks.relative("vi against the active set: radius", vi.radius, coarsest.radius, 1e-8);
+}
+
+/// The quarter model against the half model (one symmetry plane instead of two) on the
+/// coarsest mesh.
+void check_half_against_quarter(MPI_Comm comm, gelx::test::Checks& checks,
+                                const Pressed& same_size)
+{
+  // The half model's mesh is the quarter's and its mirror image, so the two share their discrete
+  // solution: they agree to the Newton tolerance (|R| <= 1e-10 |R0| at every step), and 1e-8
+  // relative leaves two digits for round-off, independently of either model's error against
+  // Hertz. A wrong symmetry condition or copy count changes the force at O(1).
+  const Pressed half = press(comm, 0.04, 2, gelx::ContactMethod::active_set);
+  checks.relative("half model (" + std::to_string(half.dofs) + " dofs): force against the "
+                      + "quarter's",
+                  half.force, same_size.force, 1e-8);
+  checks.relative("half model: radius against the quarter's", half.radius, same_size.radius,
+                  1e-8);
+  checks.require("half model: nodes in contact " + std::to_string(half.active_nodes)
+                     + " between one and two quarters' ("
+                     + std::to_string(same_size.active_nodes)
+                     + "; the nodes on the mirror plane count once)",
+                 half.active_nodes < 2 * same_size.active_nodes
+                     && half.active_nodes > same_size.active_nodes);
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -173,63 +244,9 @@ int main(int argc, char* argv[])
     checks.relative("finest mesh: contact radius against Hertz", finest.radius, a_hertz, 0.03);
     if (!finest_only)
     {
-      checks.require("the force error shrinks under refinement ("
-                         + std::to_string(force_errors.front()) + " -> "
-                         + std::to_string(force_errors.back()) + ")",
-                     force_errors.back() < force_errors.front());
-
-      // The patch's edge inside the element (gelx::patch_edge_by_gap_law): Hertz's gap opens
-      // like (r - a)^(3/2) outside the patch, the law the estimator assumes, so along the trace
-      // of the plane y = 0 it must find Hertz's radius on every mesh, to within the 2 % by which
-      // the finite neo-Hookean body's patch differs from Hertz's (the area's radius above: +1.9 %
-      // on the finest mesh, +1.4 % on h_contact = 0.014), and vary across the meshes by under
-      // 1 % of a, where the node spacing is a/3.5 to a/7. The level set's sign change on the
-      // same nodes (patch_edge_by_level_set), resolved to the spacing, misses both (measured:
-      // +2.8 %, -0.6 %, +0.1 %, a spread of 3.4 %; the gap law: +1.05 %, +0.94 %, +1.66 %).
-      double lowest = INFINITY, highest = -INFINITY;
-      for (const auto& [h, p] : quarter)
-      {
-        checks.relative("h_contact = " + std::to_string(h)
-                            + ": the patch's edge on y = 0 by the gap's 3/2 law against Hertz",
-                        p.radius_gap_law, a_hertz, 0.02);
-        lowest = std::min(lowest, p.radius_gap_law);
-        highest = std::max(highest, p.radius_gap_law);
-      }
-      checks.absolute("the gap law's edge: spread over the three meshes / a",
-                      (highest - lowest) / a_hertz, 0, 0.01);
-
-      // PETSc's bound-constrained Newton against the active set, on the coarsest mesh (the
-      // comparison holds on any mesh; the finest would double the test's time). Both solve the
-      // same discrete complementarity problem, each to |R| <= 1e-10 |R0| on the rows off the
-      // plane (the VI's norm leaves out the rows held at the bound, the active set's rows there
-      // are u_i - u_i* = 0): 1e-8 as for the half model below. Only the same active set gives
-      // agreement at that level; a node in tension left on the plane, or a node held off it,
-      // changes the solution at the order of its force.
-      const Pressed& coarsest = quarter.at(0.04);
-      const Pressed vi = press(comm, 0.04, 1, gelx::ContactMethod::vi);
-      checks.absolute("coarsest mesh, vi (" + describe(vi) + "): largest penetration / d",
-                      vi.penetration / d_max, 0, 1e-10);
-      checks.relative("vi against the active set: force", vi.force, coarsest.force, 1e-8);
-      checks.relative("vi against the active set: radius", vi.radius, coarsest.radius, 1e-8);
-
-      // The quarter model against the half model (one symmetry plane instead of two). The half
-      // model's mesh is the quarter's and its mirror image, so the two share their discrete
-      // solution: they agree to the Newton tolerance (|R| <= 1e-10 |R0| at every step), and 1e-8
-      // relative leaves two digits for round-off, independently of either model's error against
-      // Hertz. A wrong symmetry condition or copy count changes the force at O(1).
-      const Pressed half = press(comm, 0.04, 2, gelx::ContactMethod::active_set),
-                    &same_size = quarter.at(0.04);
-      checks.relative("half model (" + std::to_string(half.dofs) + " dofs): force against the "
-                          + "quarter's",
-                      half.force, same_size.force, 1e-8);
-      checks.relative("half model: radius against the quarter's", half.radius, same_size.radius,
-                      1e-8);
-      checks.require("half model: nodes in contact " + std::to_string(half.active_nodes)
-                         + " between one and two quarters' ("
-                         + std::to_string(same_size.active_nodes)
-                         + "; the nodes on the mirror plane count once)",
-                     half.active_nodes < 2 * same_size.active_nodes
-                         && half.active_nodes > same_size.active_nodes);
+      check_refinement(checks, quarter, force_errors, a_hertz);
+      check_vi_against_active_set(comm, checks, quarter.at(0.04));
+      check_half_against_quarter(comm, checks, quarter.at(0.04));
     }
     if (argc > 1 && argv[1][0] != '-' && dolfinx::MPI::rank(comm) == 0)
       std::ofstream(argv[1]) << nlohmann::json{{"status", "completed"},

@@ -18,9 +18,12 @@ import h5py
 
 
 def read_table(path):
-    """The rows of a gelx table as {column: text}, past the comment line of its units"""
+    """The rows of a gelx table as {column: text}, past the comment line of its units. A last
+    line without its newline is a row a killed run was writing (tables grow by appending):
+    skipped."""
     with open(path) as f:
-        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+        return list(csv.DictReader(line for line in f
+                                   if not line.startswith("#") and line.endswith("\n")))
 
 
 def table_units(path):

@@ -9,7 +9,8 @@ rows mpirun and every rank get SIGKILL (tests/killing.py). Two copies of what it
 from the checkpoint on, up to the round-off of a different order of MPI messages), and one at
 OTHER_RANKS, whose partition numbers the unknowns differently, within OTHER_RTOL (the Newton
 tolerances; see tests/CMakeLists.txt). Also: a restart may not change a scene parameter, and
-a folder without a checkpoint cannot be restarted.
+a folder without a checkpoint cannot be restarted; a row cut short by a kill (its newline not
+written) is not read as a row, and a restart drops it.
 
 usage: restart.py REFERENCE_DIR KILL_AFTER OTHER_RANKS OTHER_RTOL QUANTITIES COLUMNS WORK_DIR
                   SCENE_BINARY [scene options...]
@@ -87,6 +88,13 @@ print(f"killed run: {time.monotonic() - start:.1f} s")
 checks.require(f"killed at {ranks} ranks while running, after {rows_written(killed)} rows of "
                f"steps.csv (asked: {kill_after}; the reference has {len(rows_of(reference))})",
                still_running and rows_written(killed) >= kill_after)
+# A kill in the middle of an append leaves a row without its newline (tables grow by
+# appending): readers skip it, and the restarts below drop it with the rows past the checkpoint
+whole = rows_written(killed)
+with open(killed / "steps.csv", "a") as f:
+    f.write((killed / "steps.csv").read_text().splitlines()[-1][:20])
+checks.require(f"a row cut short at its 20th byte is not read: {rows_written(killed)} rows "
+               f"(before it: {whole})", rows_written(killed) == whole)
 
 # 2. What a restart refuses: a folder with no checkpoint, a changed scene parameter (the first
 #    number among them, doubled)

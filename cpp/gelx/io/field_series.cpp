@@ -4,6 +4,9 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <dolfinx/common/IndexMap.h>
 #include <dolfinx/common/MPI.h>
 #include <dolfinx/fem/DofMap.h>
@@ -185,6 +188,32 @@ void replace_file(const std::filesystem::path& path,
     throw std::runtime_error("cannot write " + path.string() + ": " + reason);
   }
   fs::rename(aside, path);
+}
+
+void append_to_file(const std::filesystem::path& path, const std::string& text)
+{
+  const auto fail = [&](const std::string& reason)
+  { throw std::runtime_error("cannot write " + path.string() + ": " + reason); };
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND);
+  struct stat before;
+  if (fd < 0 || ::fstat(fd, &before) != 0)
+    fail(std::strerror(errno));
+  for (std::size_t written = 0; written < text.size();)
+  {
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0)
+    {
+      const std::string reason = n < 0 ? std::strerror(errno) : "nothing written";
+      const int undone = ::ftruncate(fd, before.st_size);
+      ::close(fd);
+      fail(reason + (undone == 0 ? "" : " (and its partial row not removed)"));
+    }
+    written += n;
+  }
+  if (::close(fd) != 0)
+    fail(std::strerror(errno));
 }
 
 } // namespace gelx

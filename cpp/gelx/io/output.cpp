@@ -280,18 +280,19 @@ void ResultsWriter::continue_table(const std::string& file_name, int rows)
   if (_root)
   {
     std::ifstream in(_folder / file_name);
-    std::string units, header, line;
+    std::string units, header, line, kept;
     std::getline(in, units);
     std::getline(in, header);
-    for (found = 0; found < rows && std::getline(in, line); ++found)
-      table.text += line + "\n";
+    // A row is whole when its newline was written (append_to_file)
+    for (found = 0; found < rows && std::getline(in, line) && !in.eof(); ++found)
+      kept += line + "\n";
     if (rows > 0)
     {
       std::istringstream names(header);
       for (std::string name; std::getline(names, name, ',');)
         table.columns.push_back(name);
-      table.text = units + "\n" + header + "\n" + table.text;
-      replace_file(_folder / file_name, [&](std::ostream& file) { file << table.text; });
+      replace_file(_folder / file_name,
+                   [&](std::ostream& file) { file << units << "\n" << header << "\n" << kept; });
     }
     else
       std::filesystem::remove(_folder / file_name); // the columns come from the first row again
@@ -354,20 +355,28 @@ void ResultsWriter::append_rows(const std::string& file_name,
 {
   TimedStage timing("output");
   Table& table = _tables[file_name];
-  table.rows += rows.size();
   if (!_root || rows.empty())
-    return;
-  std::ostringstream out;
-  if (table.columns.empty())
   {
-    table.columns = keys(rows.front());
-    out << units_line(table.columns, _units);
-    write_csv_header(out, table.columns);
+    table.rows += rows.size();
+    return;
+  }
+  std::ostringstream out;
+  const bool starts = table.columns.empty();
+  const auto columns = starts ? keys(rows.front()) : table.columns;
+  if (starts)
+  {
+    out << units_line(columns, _units);
+    write_csv_header(out, columns);
   }
   for (const auto& row : rows)
-    write_csv_row(out, table.columns, row);
-  table.text += out.str();
-  replace_file(_folder / file_name, [&](std::ostream& file) { file << table.text; });
+    write_csv_row(out, columns, row);
+  if (starts) // a table without its header would be no table: written whole or not at all
+    replace_file(_folder / file_name, [&](std::ostream& file) { file << out.str(); });
+  else
+    append_to_file(_folder / file_name, out.str());
+  // Written: what progress() reports, and a checkpoint records
+  table.columns = columns;
+  table.rows += rows.size();
 }
 
 void ResultsWriter::write_table(const std::string& file_name,

@@ -151,8 +151,9 @@ public:
 
   /// Append one row to steps.csv (columns from the first row's keys: `step` and the path's
   /// coordinate, t, T, d_over_H, ..., first, then the rest alphabetically; above the header, a
-  /// comment line with each column's unit, units_line); the file is replaced by its new
-  /// version, so it always holds whole rows.
+  /// comment line with each column's unit, units_line). The file is created whole with its
+  /// first row, then grows by appending (append_to_file): what it holds up to its last
+  /// newline are whole rows.
   void append_step(const nlohmann::json& row);
 
   /// Append rows to the table folder/file_name (columns and units as steps.csv's), which a
@@ -187,11 +188,10 @@ private:
   /// The same for steps.csv, and remove the per-step files beyond its rows (rank 0).
   void continue_steps(int rows);
 
-  /// A table that grows by rows: its text so far (rank 0) and its number of rows
+  /// A table that grows by rows: its columns (rank 0) and its number of rows
   struct Table
   {
     std::vector<std::string> columns;
-    std::string text;
     int rows = 0;
   };
 

@@ -51,7 +51,7 @@ if missing:
     checks.require("keys in both summaries: " + ", ".join(missing), False)
     checks.finish()
 checks.require(f"both runs completed ({a.get('status')}, {b.get('status')}) with "
-               f"{a['mpi_ranks']} and {b['mpi_ranks']} ranks",
+               f"{a.get('mpi_ranks')} and {b.get('mpi_ranks')} ranks",
                all(str(run.get("status")).startswith("completed") for run in (a, b)))
 for key in args.keys:
     checks.relative(f"{key}, {args.b} against {args.a}", b[key], a[key], args.rtol)

@@ -35,7 +35,6 @@ its surface) against what holds whatever the fold's details:
 
 usage: crease.py GELX_CREASE WORK_DIR [MPIEXEC NP]
 """
-import csv
 import json
 import math
 import pathlib
@@ -43,6 +42,9 @@ import subprocess
 import sys
 
 from checks import Checks
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 
 binary, work = sys.argv[1], pathlib.Path(sys.argv[2])
 launcher = [sys.argv[3], "-np", sys.argv[4]] if len(sys.argv) > 4 else []
@@ -73,8 +75,7 @@ subprocess.run(launcher + [binary, "--output", str(folder), "--nx", "12", "--nz"
                            "--n", str(N_NU), "--lambda0", str(LAMBDA0),
                            "--imperfection", str(IMPERFECTION)],
                check=True, stdout=subprocess.DEVNULL)
-with open(folder / "steps.csv") as f:
-    rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+rows = read_table(folder / "steps.csv")
 summary = json.loads((folder / "summary.json").read_text())
 
 # 1. The far field before the fold

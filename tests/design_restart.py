@@ -18,7 +18,6 @@ restarted iterates differ from the uninterrupted ones; what the checkpoint carri
 
 usage: design_restart.py BINARY MPIEXEC WORK_DIR
 """
-import csv
 import json
 import pathlib
 import shutil
@@ -26,6 +25,9 @@ import subprocess
 import sys
 
 from checks import Checks
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 
 binary, mpiexec, work = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
 shutil.rmtree(work, ignore_errors=True)
@@ -41,25 +43,20 @@ def run(ranks, *args):
                    f"({p.stderr.strip()[-200:]!r})", p.returncode == 0)
 
 
-def rows(folder, name):
-    with open(folder / name) as f:
-        return list(csv.DictReader(line for line in f if not line.startswith("#")))
-
-
 run(2, "--output", str(work / "reference"), *small)
 run(2, "--output", str(work / "restarted"), "--stop_after_steps", "16", *small)
-stopped = rows(work / "restarted", "steps.csv")
+stopped = read_table(work / "restarted" / "steps.csv")
 checks.require(f"the stopped run wrote iterates 0 to {len(stopped) - 1} (16 expected)",
                len(stopped) == 16)
 run(1, "--restart", str(work / "restarted"))
 
 reference = json.loads((work / "reference" / "summary.json").read_text())
 summary = json.loads((work / "restarted" / "summary.json").read_text())
-steps = rows(work / "restarted", "steps.csv")
+steps = read_table(work / "restarted" / "steps.csv")
 numbers = [int(r["step"]) for r in steps]
 checks.require(f"steps.csv: steps 0 .. {numbers[-1]} once each ({len(numbers)} rows)",
                numbers == list(range(len(numbers))) and len(numbers) > 16)
-design = rows(work / "restarted", "design.csv")
+design = read_table(work / "restarted" / "design.csv")
 per_step = {}
 for r in design:
     per_step.setdefault(int(r["step"]), []).append((r["layer"], int(r["slab"])))

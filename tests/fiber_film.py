@@ -34,7 +34,6 @@ times slower, not quite gone at t_end), 2.0e-4 in 2, 2.3 % in 3 and 1.12 times i
 
 usage: fiber_film.py GELX_FIBER_FILM GELX_FIBER_GEL WORK_DIR [MPIEXEC NP [LAYERS]]
 """
-import csv
 import json
 import math
 import pathlib
@@ -42,6 +41,9 @@ import subprocess
 import sys
 
 from checks import Checks
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 
 film_binary, gel_binary, work = sys.argv[1], sys.argv[2], pathlib.Path(sys.argv[3])
 launcher = [sys.argv[4], "-np", sys.argv[5]] if len(sys.argv) > 5 else []
@@ -57,8 +59,7 @@ def run(binary, name, args):
 
 
 film, folder = run(film_binary, "transient", ["--layers", layers])
-with open(folder / "steps.csv") as f:
-    rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+rows = read_table(folder / "steps.csv")
 p = film["parameters"]
 same = ["--l", str(p["l"]), "--L", str(p["L"]), "--D", str(p["D"]), "--d", str(p["d"]),
         "--h_fiber", str(p["h_fiber"]), "--h_far", str(p["h_far"]), "--alpha0", str(p["alpha0"])]

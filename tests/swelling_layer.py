@@ -49,7 +49,6 @@ dl/dt = d/dz (D (l - phi0) / l^2 dmu/dz), is one nonlinear diffusion equation.
 
 usage: swelling_layer.py GELX_SWELLING WORK_DIR [MPIEXEC NP]
 """
-import csv
 import json
 import math
 import pathlib
@@ -65,7 +64,7 @@ from scipy.sparse import diags
 from checks import Checks
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
-from fields import FieldSeries  # noqa: E402  (demos/fields.py)
+from fields import FieldSeries, read_table  # noqa: E402  (demos/fields.py)
 
 binary, work = sys.argv[1], pathlib.Path(sys.argv[2])
 launcher = [sys.argv[3], "-np", sys.argv[4]] if len(sys.argv) > 4 else []
@@ -100,8 +99,7 @@ def run(name, *options):
                                "--lambda0", str(LAMBDA0), "--n", str(N_NU), "--D", str(D),
                                *options], check=True, stdout=subprocess.DEVNULL)
     summary = json.loads((folder / "summary.json").read_text())
-    with open(folder / "steps.csv") as f:
-        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    rows = read_table(folder / "steps.csv")
     return summary, rows
 
 

@@ -32,7 +32,6 @@ Tanaka-Fillmore's, which the check tells apart.
 
 usage: swelling_sphere.py GELX_SWELLING WORK_DIR [MPIEXEC NP]
 """
-import csv
 import math
 import pathlib
 import subprocess
@@ -42,6 +41,9 @@ import numpy as np
 from scipy.optimize import brentq
 
 from checks import Checks
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "demos"))
+from fields import read_table  # noqa: E402  (demos/fields.py)
 
 binary, work = sys.argv[1], pathlib.Path(sys.argv[2])
 launcher = [sys.argv[3], "-np", sys.argv[4]] if len(sys.argv) > 4 else []
@@ -93,8 +95,7 @@ def decay_time(radius, cells):
                                "-swelling_ts_adapt_type", "none", "-swelling_ts_dt",
                                repr(tau / 32)],
                    check=True, stdout=subprocess.DEVNULL)
-    with open(folder / "steps.csv") as f:
-        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    rows = read_table(folder / "steps.csv")
     t = np.array([float(r["time"]) for r in rows])
     gap = a_inf**3 - np.array([float(r["swelling_ratio"]) for r in rows])
     window = (t > 1.5 * tau) & (t < 3 * tau)

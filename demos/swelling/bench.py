@@ -29,6 +29,9 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))
+from fields import read_table  # noqa: E402  (demos/fields.py)
+
 build, out = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
 binary = build / "demos" / "swelling" / "gelx-swelling"
 N_NU, LAMBDA0, CHI = 1e-3, 1.5, 0.4
@@ -51,8 +54,7 @@ def run(name, cells, end_time, *options):
                     "--nx", str(cells), "--nz", str(cells), "--chi", str(CHI), "--end_time",
                     str(end_time), "--outputs", "1", "--checkpoint_every", "0", *options],
                    check=True, stdout=subprocess.DEVNULL, env=env)
-    with open(folder / "steps.csv") as f:
-        steps = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    steps = read_table(folder / "steps.csv")
     return json.loads((folder / "summary.json").read_text()), steps
 
 

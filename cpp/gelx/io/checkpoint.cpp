@@ -1,5 +1,5 @@
 #include <gelx/io/checkpoint.h>
-#include <gelx/io/field_series.h>
+#include <gelx/io/files.h>
 #include <gelx/io/parameters.h>
 #include <gelx/common/petsc_utils.h>
 #include <gelx/systems/problem.h>

@@ -11,7 +11,6 @@ without editing this file. With MPIEXEC, the errors raised after MPI start-up ar
 usage: bad_input.py SCENE SCENE_BINARY WORK_DIR [MPIEXEC]
 """
 import concurrent.futures
-import csv
 import json
 import os
 import pathlib

@@ -68,7 +68,7 @@ for key in ("slope_lc_vs_d", "slope_lc_vs_d_gap_law"):
 # (Q1-P0, 2 cells) and 2.1 % (Q2-Q1, 1 cell) above it: windows of 6 % and 3.5 %. A force of the
 # quarter model, not the whole pyramid's, or with G off by 10 %, fails them
 FORCE_WINDOW = {1: 0.06, 2: 0.035}
-checks.relative(f"force at d/H = 0.3 (uN) against the converged 5.00", s["final_force"], 5.00,
+checks.relative("force at d/H = 0.3 (uN) against the converged 5.00", s["final_force"], 5.00,
                 FORCE_WINDOW[p["order"]])
 
 # Work and energy: frictionless contact with an exact active set dissipates nothing, so the

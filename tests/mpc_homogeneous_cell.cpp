@@ -15,6 +15,8 @@
 //     closed-form mu of sigma_xx(mu) = 0 (bisection, as tests/uniaxial_stretch.cpp);
 //  3. the same uniaxial state reached by a macro force on a free U_zz (a load on a dummy node);
 //  4. every non-lower macro free and unloaded: u and U stay zero.
+// For P2-P1, state 2 again by the fieldsplit linear solver, whose u block holds the macro
+// unknowns.
 // For P1, P2 and mixed P2-P1 (u-p with bulk compliance 1/K, whose energy is Eq. 3.1 once
 // p = K (J - 1) is eliminated; its pressure is checked too), at 1 and 2 ranks; the 2-rank mesh
 // puts slaves and masters of a pair on different ranks (counted and required).
@@ -222,21 +224,33 @@ double homogeneous_error(const Cell& cell, const std::array<double, 3>& lambda,
   return error;
 }
 
+/// The iterations of a solve: the most Newton iterations of a step, and the totals
+struct Iterations
+{
+  int most_per_step = 0, newton = 0, linear = 0;
+};
+
 /// Restart from u = 0 with the macro unknowns as `load` sets them, and follow the load in two
-/// steps; returns the largest number of Newton iterations of a step.
-int solve(Cell& cell, const std::function<void(double)>& load)
+/// steps by a Newton solver of options prefix `prefix`.
+Iterations solve(Cell& cell, const std::function<void(double)>& load,
+                 const std::string& prefix = "newton_")
 {
   GELX_PETSC(VecSet(cell.mpc->unknowns(), 0.0));
   load(0);
   cell.mpc->unknowns_changed();
-  gelx::NewtonSolver newton(cell.V->mesh()->comm());
+  gelx::NewtonSolver newton(cell.V->mesh()->comm(), prefix);
   gelx::LoadSteppingOptions steps;
   steps.dt = 0.5;
   steps.dt_max = 0.5;
-  int iterations = 0;
+  Iterations iterations;
   gelx::LoadStepper(*cell.mpc, newton, steps, load)
-      .run([&](const gelx::StepRecord& s, gelx::PathState&)
-           { iterations = std::max(iterations, s.newton.iterations); });
+      .run(
+          [&](const gelx::StepRecord& s, gelx::PathState&)
+          {
+            iterations.most_per_step = std::max(iterations.most_per_step, s.newton.iterations);
+            iterations.newton += s.newton.iterations;
+            iterations.linear += s.newton.linear_iterations;
+          });
   return iterations;
 }
 
@@ -286,7 +300,8 @@ void check_cell(gelx::test::Checks& checks, MPI_Comm comm, Element element)
                                  for (const auto& row : cell.U)
                                    for (int k : row)
                                      cell.mpc->prescribe_macro(k, 0);
-                               });
+                               })
+                             .most_per_step;
   checks.require(p + "translated corner: Newton iterations per step " + std::to_string(iterations)
                      + " (at most 1)",
                  iterations <= 1);
@@ -333,13 +348,28 @@ void check_cell(gelx::test::Checks& checks, MPI_Comm comm, Element element)
     checks.relative(p + how + ": macro force of U_zz against P_zz A_z",
                     cell.mpc->macro_force(cell.U[2][2]), face_force(uniaxial, 2), tol);
   };
-  solve(cell,
-        [&](double t)
-        {
-          release_upper(cell);
-          cell.mpc->prescribe_macro(cell.U[2][2], t * (lambda - 1) * L[2]);
-        });
+  const auto stretch_zz = [&](double t)
+  {
+    release_upper(cell);
+    cell.mpc->prescribe_macro(cell.U[2][2], t * (lambda - 1) * L[2]);
+  };
+  solve(cell, stretch_zz);
   check_uniaxial("uniaxial, prescribed U_zz");
+  if (element == Element::p2_p1)
+  {
+    // 2b. The same by the fieldsplit linear solver (Schur complement of p; LU on u, so that
+    // it is exact up to FGMRES's 1e-10): the free macro unknowns are neither displacement
+    // nor pressure dofs, and belong to u's block. (Not state 3: with U_zz free too, a uniform
+    // dilation costs no deviatoric energy, and u's block is singular)
+    gelx::set_default_options("split_", {{"linear_solver", "fieldsplit"},
+                                         {"fieldsplit_u_pc_type", "lu"}});
+    const Iterations split = solve(cell, stretch_zz, "split_");
+    check_uniaxial("uniaxial, prescribed U_zz, fieldsplit");
+    checks.require(p + "fieldsplit: " + std::to_string(split.linear)
+                       + " Krylov iterations for " + std::to_string(split.newton)
+                       + " Newton iterations (at least two each: the split, not LU, solved)",
+                   split.newton > 0 && split.linear >= 2 * split.newton);
+  }
 
   // 3. The same state from a macro force on a free U_zz
   const double force = face_force(uniaxial, 2);

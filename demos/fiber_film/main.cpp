@@ -176,11 +176,14 @@ int main(int argc, char* argv[])
     auto bath = std::make_shared<fem::Function<double>>(
         std::make_shared<fem::FunctionSpace>(M->collapse().first)); // pure solvent: mu = 0
     bcs.push_back(gelx::prescribe_sub(M, bath, geo.facet_tags->find(geo.tag("x_max"))));
-    // (no fieldsplit solver: its split has no place for the constraint's macro unknowns, so
-    // the form's schur_preconditioner is not used here; MUMPS solves the constrained system)
     gelx::NonlinearProblem problem(w, forms.form(form_fiber_film_residual_p2p1, {W}),
                                    forms.form(form_fiber_film_tangent_p2p1, {W, W}), bcs,
                                    forms.expression(expression_fiber_film_margin_p2p1));
+    // MUMPS by default; with -fiber_film_linear_solver fieldsplit and
+    // -fiber_film_pc_fieldsplit_schur_precondition user, mu's Schur complement preconditioned
+    // by the fixed-stress operator as in demos/swelling, at each tangent's state and shift
+    problem.set_schur_preconditioner(
+        forms.form(form_fiber_film_schur_preconditioner_p2p1, {W, W}), true);
 
     // 4. The film unbounded in y and z: those faces plane, at free macro displacements
     gelx::MultipointConstraint film(problem, U);

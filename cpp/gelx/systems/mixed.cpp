@@ -150,8 +150,7 @@ void define_displacement_pressure_fields(PC pc, NonlinearSystem& system)
   GELX_PETSC(VecGetOwnershipRange(system.unknowns(), &first, &end));
   std::vector<char> in_a_field(end - first, 0);
 
-  // The owned unknowns of sub-space i, sorted by global index, each with the collapsed
-  // sub-space's dof it comes from
+  // The owned unknowns of sub-space i, each with the collapsed sub-space's dof it comes from
   auto field = [&](int i)
   {
     auto [V, map] = collapsed(W, i);
@@ -162,16 +161,18 @@ void define_displacement_pressure_fields(PC pc, NonlinearSystem& system)
         rows.push_back({first + unknown[map[k]], std::int32_t(k)});
         in_a_field[unknown[map[k]]] = 1;
       }
-    std::sort(rows.begin(), rows.end());
     return std::make_pair(V, rows);
   };
-  const auto [V, u_rows] = field(0);
-  const auto [Q, p_rows] = field(1);
-  int complete = std::all_of(in_a_field.begin(), in_a_field.end(), [](char c) { return c; });
-  MPI_Allreduce(MPI_IN_PLACE, &complete, 1, MPI_INT, MPI_MIN, comm);
-  if (!complete)
-    throw InputError("the fieldsplit linear solver: some unknowns (macro unknowns, a load "
-                     "factor) are neither displacement nor pressure");
+  auto [V, u_rows] = field(0);
+  auto [Q, p_rows] = field(1);
+  // The unknowns of neither sub-space (a constraint's macro displacements, a load factor) join
+  // u's block, which they are coupled to through u's rows; they have no dof, so no rigid-body
+  // mode entry (marked -1, zero in the near-nullspace: a hint to AMG, exact for LU)
+  for (PetscInt i = 0; i < end - first; ++i)
+    if (!in_a_field[i])
+      u_rows.push_back({first + i, -1});
+  std::sort(u_rows.begin(), u_rows.end());
+  std::sort(p_rows.begin(), p_rows.end());
 
   auto index_set = [&](const std::vector<std::pair<PetscInt, std::int32_t>>& rows)
   {
@@ -197,7 +198,7 @@ void define_displacement_pressure_fields(PC pc, NonlinearSystem& system)
     for (std::size_t r = 0; r < u_rows.size(); ++r)
     {
       const std::int32_t k = u_rows[r].second;
-      a[r] = rigid_body_modes_at(&X[3 * (k / bs)], k % bs)[m];
+      a[r] = k < 0 ? 0.0 : rigid_body_modes_at(&X[3 * (k / bs)], k % bs)[m];
     }
     GELX_PETSC(VecRestoreArray(modes[m], &a));
     for (int n = 0; n < m; ++n)

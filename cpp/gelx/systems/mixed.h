@@ -39,9 +39,9 @@ reaction_force(const NonlinearProblem& problem, const dolfinx::fem::FunctionSpac
 /// unknown_of_problem_dof, so a constrained space works too), and on `u` the rigid-body modes
 /// as its near-nullspace, which PCFIELDSPLIT hands to the displacement block's matrix (GAMG);
 /// with -PREFIX_pc_fieldsplit_schur_precondition user, the Schur complement's preconditioner
-/// from the problem's schur_preconditioner() form (problem.h), which the PC owns.
-/// Throws InputError when the space is not mixed or some unknown is neither (a macro unknown,
-/// an arc-length load factor). Collective.
+/// from the problem's schur_preconditioner() form (problem.h), which the PC owns. Unknowns of
+/// neither sub-space (a constraint's macro unknowns, an arc-length load factor) belong to `u`.
+/// Throws InputError when the space is not mixed. Collective.
 void define_displacement_pressure_fields(PC pc, NonlinearSystem& system);
 
 /// After a solver of `system` read its options: if the preconditioner of `ksp` is PCFIELDSPLIT,

@@ -1,4 +1,5 @@
 #include <gelx/io/output.h>
+#include <gelx/io/files.h>
 #include <gelx/common/collectives.h>
 #include <gelx/io/parameters.h>
 #include <gelx/common/timing.h>

@@ -7,7 +7,6 @@
 /// fields.xdmf, steps.csv has one row per completed step.
 
 #include <gelx/io/field_series.h>
-#include <gelx/io/files.h>
 #include <gelx/io/units.h>
 
 #include <dolfinx/fem/Expression.h>

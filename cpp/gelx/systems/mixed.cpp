@@ -150,7 +150,8 @@ void define_displacement_pressure_fields(PC pc, NonlinearSystem& system)
   // a node's components consecutive (block size 3); a mixed space numbers u's components one
   // by one, so u's block has block size 1, on which hypre crashes (SEGV, measured on the
   // swelling cube). Refused with one line instead
-  const std::string vec_interp = "-" + prefix + "fieldsplit_u_pc_hypre_boomeramg_vec_interp_variant";
+  const std::string vec_interp
+      = "-" + prefix + "fieldsplit_u_pc_hypre_boomeramg_vec_interp_variant";
   PetscBool vec_interp_given = PETSC_FALSE;
   GELX_PETSC(PetscOptionsHasName(nullptr, nullptr, vec_interp.c_str(), &vec_interp_given));
   if (vec_interp_given)

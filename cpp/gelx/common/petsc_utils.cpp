@@ -227,7 +227,28 @@ KSP create_linear_solver(MPI_Comm comm, const std::string& prefix)
   GELX_PETSC(KSPCreate(comm, &ksp));
   GELX_PETSC(KSPSetOptionsPrefix(ksp, prefix.c_str()));
   GELX_PETSC(KSPSetFromOptions(ksp));
+  refactor_after_failure(ksp);
   return ksp;
+}
+
+void refactor_after_failure(KSP ksp)
+{
+  const auto forget_failed_factor = [](KSP solved, Vec, Vec, void*) -> PetscErrorCode
+  {
+    KSPConvergedReason reason;
+    PetscCall(KSPGetConvergedReason(solved, &reason));
+    if (reason != KSP_DIVERGED_PC_FAILED)
+      return 0;
+    PC pc;
+    PetscCall(KSPGetPC(solved, &pc));
+    PetscBool factor;
+    PetscCall(PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(pc), &factor, PCLU,
+                                        PCCHOLESKY, ""));
+    if (factor)
+      PetscCall(PCReset(pc)); // the next solve's PCSetUp factorises from the start
+    return 0;
+  };
+  GELX_PETSC(KSPSetPostSolve(ksp, forget_failed_factor, nullptr));
 }
 
 double real_option(const std::string& prefix, const std::string& name, double fallback)

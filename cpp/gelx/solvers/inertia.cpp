@@ -223,6 +223,7 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
   KSP ksp;
   GELX_PETSC(SNESGetKSP(snes, &ksp));
   define_fields_if_split(ksp, system);
+  refactor_after_failure(ksp);
   // A step TS cannot take ends TSSolve with a negative reason, reported by run()
   GELX_PETSC(TSSetErrorIfStepFails(_ts, PETSC_FALSE));
 }

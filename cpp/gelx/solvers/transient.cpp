@@ -68,6 +68,7 @@ TransientProblem::TransientProblem(MPI_Comm comm, NonlinearSystem& system,
   KSP ksp;
   GELX_PETSC(SNESGetKSP(snes, &ksp));
   define_fields_if_split(ksp, system);
+  refactor_after_failure(ksp);
 }
 
 TransientProblem::~TransientProblem()

@@ -1,5 +1,6 @@
 #include <gelx/common/petsc_utils.h>
 #include <gelx/io/parameters.h>
+#include <petsc/private/kspimpl.h>
 
 #include <algorithm>
 #include <cctype>
@@ -233,6 +234,11 @@ KSP create_linear_solver(MPI_Comm comm, const std::string& prefix)
 
 void refactor_after_failure(KSP ksp)
 {
+  // A KSP holds one post-solve hook, and PETSc 3.18 offers no way to chain them: one already
+  // there (SNES's Eisenstat-Walker forcing terms, -snes_ksp_ew, which it needs after every
+  // solve) is left alone, and that KSP keeps PETSc's behaviour after a failed factorisation
+  if (ksp->postsolve)
+    return;
   const auto forget_failed_factor = [](KSP solved, Vec, Vec, void*) -> PetscErrorCode
   {
     KSPConvergedReason reason;

@@ -121,7 +121,8 @@ KSP create_linear_solver(MPI_Comm comm, const std::string& prefix);
 /// when INFOG(1) < 0): without this, every retry of a failed step at a smaller size failed
 /// too (seen on the inflation with constraints at 2 ranks: 17 cut-backs, all
 /// DIVERGED_PC_FAILED). Acts on LU and Cholesky preconditioners (a split's fields, defined
-/// once, would not survive a reset). A KSPSetPostSolve hook.
+/// once, would not survive a reset). A KSPSetPostSolve hook, not installed where the KSP has
+/// one already (SNES's Eisenstat-Walker, -snes_ksp_ew).
 void refactor_after_failure(KSP ksp);
 
 /// Value of a real option `-<prefix><name>`, or `fallback` when unset.

@@ -125,7 +125,7 @@ ArcLengthSystem::ArcLengthSystem(NonlinearSystem& inner, std::function<void(doub
   _K = inner.create_matrix();
   _ksp = create_linear_solver(_comm, prefix);
   // K is the wrapped system's tangent, so a field split of it has that system's fields
-  define_fields_if_split(_ksp, inner);
+  prepare_linear_solver(_ksp, inner);
   for (Vec* v : {&_g, &_x0, &_f, &_b, &_work, &_work2})
     *v = inner.create_vector();
 }

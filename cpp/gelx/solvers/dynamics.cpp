@@ -442,8 +442,7 @@ DampedDynamics::DampedDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSGetSNES(_ts, &snes));
   KSP ksp;
   GELX_PETSC(SNESGetKSP(snes, &ksp));
-  define_fields_if_split(ksp, system);
-  refactor_after_failure(ksp);
+  prepare_linear_solver(ksp, system);
   // A step TS cannot take (more than ts_max_reject rejections) ends TSSolve with a negative
   // converged reason, which run() reports as a ConvergenceError, instead of a PETSc error
   // whose traceback each rank prints (measured: the bistrip's pre-compressed strip)

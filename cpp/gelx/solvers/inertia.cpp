@@ -222,8 +222,7 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSGetSNES(_ts, &snes));
   KSP ksp;
   GELX_PETSC(SNESGetKSP(snes, &ksp));
-  define_fields_if_split(ksp, system);
-  refactor_after_failure(ksp);
+  prepare_linear_solver(ksp, system);
   // A step TS cannot take ends TSSolve with a negative reason, reported by run()
   GELX_PETSC(TSSetErrorIfStepFails(_ts, PETSC_FALSE));
 }

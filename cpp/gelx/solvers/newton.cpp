@@ -244,8 +244,7 @@ void NewtonSolver::set_up(NonlinearSystem& system)
   refuse_unread_options_of(_prefix);
   KSP ksp;
   GELX_PETSC(SNESGetKSP(_snes, &ksp));
-  define_fields_if_split(ksp, system);
-  refactor_after_failure(ksp);
+  prepare_linear_solver(ksp, system);
   // After the type is set: creating a VI type installs its own convergence test
   GELX_PETSC(SNESSetConvergenceTest(_snes, converged, context, nullptr));
   PetscBool bounded;

@@ -67,8 +67,7 @@ TransientProblem::TransientProblem(MPI_Comm comm, NonlinearSystem& system,
   GELX_PETSC(TSGetSNES(_ts, &snes));
   KSP ksp;
   GELX_PETSC(SNESGetKSP(snes, &ksp));
-  define_fields_if_split(ksp, system);
-  refactor_after_failure(ksp);
+  prepare_linear_solver(ksp, system);
 }
 
 TransientProblem::~TransientProblem()

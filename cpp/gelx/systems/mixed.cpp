@@ -267,7 +267,7 @@ void define_displacement_pressure_fields(PC pc, NonlinearSystem& system)
   ISDestroy(&is_p);
 }
 
-void define_fields_if_split(KSP ksp, NonlinearSystem& system)
+void prepare_linear_solver(KSP ksp, NonlinearSystem& system)
 {
   PC pc;
   GELX_PETSC(KSPGetPC(ksp, &pc));
@@ -275,6 +275,7 @@ void define_fields_if_split(KSP ksp, NonlinearSystem& system)
   GELX_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCFIELDSPLIT, &split));
   if (split)
     define_displacement_pressure_fields(pc, system);
+  refactor_after_failure(ksp);
 }
 
 } // namespace gelx

@@ -44,9 +44,11 @@ reaction_force(const NonlinearProblem& problem, const dolfinx::fem::FunctionSpac
 /// Throws InputError when the space is not mixed. Collective.
 void define_displacement_pressure_fields(PC pc, NonlinearSystem& system);
 
-/// After a solver of `system` read its options: if the preconditioner of `ksp` is PCFIELDSPLIT,
-/// define its fields (define_displacement_pressure_fields), which only the system knows.
-/// NewtonSolver, DampedDynamics and ArcLengthSystem (on its K) call it. Collective.
-void define_fields_if_split(KSP ksp, NonlinearSystem& system);
+/// After a solver of `system` read its options, what its KSP needs from gelx: if the
+/// preconditioner is PCFIELDSPLIT, its fields (define_displacement_pressure_fields), which only
+/// the system knows; and a fresh factorisation after a failed one (refactor_after_failure,
+/// petsc_utils.h). Every solver of a system calls it: NewtonSolver, TransientProblem,
+/// DampedDynamics, InertialDynamics and ArcLengthSystem (on its K). Collective.
+void prepare_linear_solver(KSP ksp, NonlinearSystem& system);
 
 } // namespace gelx

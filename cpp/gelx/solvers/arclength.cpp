@@ -353,6 +353,13 @@ double ArcLength::tangent_direction(const PathState& state, double psi, Vec t)
   return t_l;
 }
 
+bool ArcLength::ahead_of(Vec x0, double l0, Vec t, double t_l, double psi)
+{
+  OwnedVec step(_system.create_vector());
+  GELX_PETSC(VecWAXPY(step.get(), -1.0, x0, _system.unknowns()));
+  return dot(step.get(), t) + psi * psi * (_bordered.load_factor() - l0) * t_l > 0;
+}
+
 double ArcLength::switch_branch(PathState& state)
 {
   Vec bordered = _bordered.create_vector();
@@ -451,6 +458,16 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
       _bordered.pack(x0, l0, last_point.get());
       _bordered.set_state(bordered.get());
       report = _newton.correct(_bordered, last_point.get());
+      // The arc-length sphere meets the path behind the last point as well as ahead of it, and
+      // a corrector that wandered (near a sharp turn, where round-off leaves residuals Newton
+      // does not reduce) can converge to the point behind: the path would then retrace
+      // itself, with every later predictor oriented backwards. Only a point ahead along the
+      // predictor's direction is a step; one behind is retried with a shorter arc length.
+      if (report.converged && !ahead_of(x0, l0, t.get(), t_l, psi))
+      {
+        report.converged = false;
+        report.reason = "converged behind the last point";
+      }
       if (report.converged)
         break;
       // Failed: back to the last point with half the arc length

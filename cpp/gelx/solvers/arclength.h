@@ -118,7 +118,8 @@ private:
 /// Follows the path R(x, lambda) = 0 by pseudo-arc-length continuation: per step a tangent
 /// predictor (K t = -f, oriented along the previous step) of length ds, then Newton on the
 /// bordered system (ArcLengthSystem, SNES with prefix PREFIX, by default `arclength_`). Step
-/// lengths adapt to the iteration count and are halved after a failed corrector.
+/// lengths adapt to the iteration count and are halved after a failed corrector, and after one
+/// that converged behind the last point (where the path would retrace itself).
 ///
 /// gelx options (prefix PREFIX): ds (first arc length), ds_max, ds_min, psi, target_it
 /// (iterations per step the adaptation aims at), rtol (|R| <= rtol |dR/dlambda|, the force
@@ -162,6 +163,10 @@ private:
   /// Unit tangent at the current state, oriented along state.direction (or toward increasing
   /// lambda on a new path): into `t`, returns t_l. Leaves dR/dlambda in _load.
   double tangent_direction(const PathState& state, double psi, Vec t);
+  /// Whether the current state lies ahead of the last point (x0, l0) along the predictor's
+  /// direction (t, t_l): its step has a positive component along it, in the arc length's
+  /// metric (load weighted by psi).
+  bool ahead_of(Vec x0, double l0, Vec t, double t_l, double psi);
 
   MPI_Comm _comm;
   NonlinearSystem& _system;

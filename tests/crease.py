@@ -10,7 +10,7 @@ its surface) against what holds whatever the fold's details:
    solved here by bisection at each point's chi. Q2 represents the homogeneous state exactly;
    what remains is the dip's reach to x = W = H, which grows with the valley's depth. While
    the surface is nearly flat (the valley at most twice the dip's depth), h/H within 1e-4 of
-   l (measured worst 1.46e-5 on the test's 12 x 6 cells; 7.8e-4 at the fold).
+   l (measured worst 1.41e-5 on the test's 12 x 6 cells).
 2. The limit point: the path turns back in chi where the tangent becomes singular, so the
    first negative eigenvalue of the tangent (its inertia) appears within one step of the
    first limit point (a regular limit point; a bifurcation would show an eigenvalue crossing
@@ -30,7 +30,7 @@ its surface) against what holds whatever the fold's details:
 4. summary.json's time split: no part negative (the continuation's solves with the wrapped
    tangent, nested in the bordered system's, counted once: before, "other" was -1.6 s), and
    every evaluation of the continuation counted where it belongs: "other" (set-up, the
-   scene's probes, the step control) at most 5 % of the wall time (measured 1.3 %; 11 % with
+   scene's probes, the step control) at most 5 % of the wall time (measured 0.71 %; 11 % with
    the predictor's tangent and load derivative, assembled outside any SNES, left untimed).
 
 usage: crease.py GELX_CREASE WORK_DIR [MPIEXEC NP]

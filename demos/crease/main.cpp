@@ -5,9 +5,8 @@
 //   ./gelx run crease --nx 80 --nz 40 --imperfection 0.002
 //   ./gelx run crease --chi_end 0.3 -arclength_ds_max 2
 //
-// The Flory-Rehner gel of forms/swelling.py (thesis Eq. 4.28) in a plane-strain slab
-// 0 <= x <= W, 0 <= z <= H of a wide layer, one Q2-Q1 hexahedron thick in y between rollers
-// (the chemical potential is prescribed at every node, so its Q1 field only carries the load).
+// The Flory-Rehner gel of forms/crease.py (thesis Eq. 4.28) in a plane-strain slab
+// 0 <= x <= W, 0 <= z <= H of a wide layer, one Q2 hexahedron thick in y between rollers.
 // The reference state is the gel swollen freely to the stretch lambda0 from dry, in pure
 // solvent (mu = 0) at chi = chi_free(phi0), stress-free; in that state it was bonded to the
 // substrate at z = 0. Lowering chi (a temperature change through chi(T)) makes the gel take
@@ -28,7 +27,7 @@
 // that plane (gelx::RigidPlaneContact) keeps the path off it, and the path stops where the
 // flanks touch (what going on needs: demos/crease/README.md).
 
-#include "swelling.h"
+#include "crease.h"
 
 #include <gelx/common/collectives.h>
 #include <gelx/common/petsc_utils.h>
@@ -39,7 +38,6 @@
 #include <gelx/systems/boundary.h>
 #include <gelx/systems/contact.h>
 #include <gelx/systems/forms.h>
-#include <gelx/systems/mixed.h>
 #include <gelx/systems/problem.h>
 #include <theory/flory_rehner.h>
 
@@ -130,45 +128,38 @@ int main(int argc, char* argv[])
       X[i + 2] = p.H * (1 - std::pow(1 - z, p.grading)) * (1 - dip);
     }
 
-    // 3. The (u, mu) space of forms/swelling.py, at rest in the reference state (mu = 0)
+    // 3. The displacement from the reference state, where the gel is at rest in pure solvent.
+    //    The solvent stays in equilibrium with the bath (mu = 0) at every point and every chi:
+    //    no chemical potential is solved for (forms/crease.py)
     auto V = std::make_shared<fem::FunctionSpace>(
-        fem::create_functionspace(functionspace_form_swelling_residual_q2q1, "w_q2q1", geo.mesh));
-    auto w = std::make_shared<fem::Function<double>>(V);
-    auto w_dot = std::make_shared<fem::Function<double>>(V); // stays 0: no time
-    gelx::FormBinding forms(geo.mesh, {{"w_q2q1", w}, {"w_dot_q2q1", w_dot}},
-                            {{"n", p.n}, {"phi0", phi0}, {"chi", chi0}, {"kT_nu", p.kT_nu},
-                             {"D", 1.0}, {"shift", 0.0}});
-    auto U = V->sub({0});
-    auto M = V->sub({1});
+        fem::create_functionspace(functionspace_form_crease_residual, "u", geo.mesh));
+    auto u = std::make_shared<fem::Function<double>>(V);
+    gelx::FormBinding forms(geo.mesh, {{"u", u}},
+                            {{"n", p.n}, {"phi0", phi0}, {"chi", chi0}, {"kT_nu", p.kT_nu}});
 
     // 4. Bonded at z = 0, rollers on x = 0 (the fold's plane of symmetry), x = W and the faces
-    //    of y; mu = 0 at every node (pure solvent, in equilibrium throughout)
-    gelx::DirichletConditions supports(U, geo.facet_tags);
+    //    of y
+    gelx::DirichletConditions supports(V, geo.facet_tags);
     supports.clamp(geo.tag("z_min"));
     supports.fix(geo.tag("x_min"), 0);
     supports.fix(geo.tag("x_max"), 0);
     supports.fix(geo.tag("y_min"), 1);
     supports.fix(geo.tag("y_max"), 1);
-    auto bcs = supports.bcs();
-    auto pure_solvent = std::make_shared<fem::Function<double>>(
-        std::make_shared<fem::FunctionSpace>(M->collapse().first));
-    bcs.push_back(gelx::prescribe_sub_every_node(M, pure_solvent));
-    gelx::NonlinearProblem problem(w, forms.form(form_swelling_residual_q2q1, {V}),
-                                   forms.form(form_swelling_tangent_q2q1, {V, V}), bcs,
-                                   forms.expression(expression_swelling_margin_q2q1));
+    gelx::NonlinearProblem problem(u, forms.form(form_crease_residual, {V}),
+                                   forms.form(form_crease_tangent, {V, V}), supports.bcs(),
+                                   forms.expression(expression_crease_margin));
     const auto chi_at = [&](double l) { return chi0 + l * (p.chi_end - chi0); };
     const auto set_load = [&](double l) { forms.set("chi", chi_at(l)); };
 
     // 5. The surface's nodes: reference coordinates of the displacement's dofs on z = H
-    auto u = gelx::collapse_sub_function(*w, 0);
-    const std::vector<double> nodes = u->function_space()->tabulate_dof_coordinates(false);
-    const std::vector<std::int32_t> surface_nodes = fem::locate_dofs_topological(
-        *u->function_space(), 2, geo.facet_tags->find(geo.tag("z_max")));
+    const std::vector<double> nodes = V->tabulate_dof_coordinates(false);
+    const std::vector<std::int32_t> surface_nodes
+        = fem::locate_dofs_topological(*V, 2, geo.facet_tags->find(geo.tag("z_max")));
     const double tolerance = 1e-9 * p.W;
     const auto surface = [&]
     {
       const std::span<const double> d = u->x()->array();
-      const std::int32_t owned = u->function_space()->dofmap()->index_map->size_local();
+      const std::int32_t owned = V->dofmap()->index_map->size_local();
       double far = -INFINITY, valley = -INFINITY, gap = INFINITY;
       for (std::int32_t i : surface_nodes)
       {
@@ -191,8 +182,8 @@ int main(int argc, char* argv[])
     gelx::ResultsWriter& results = run.results(geo.mesh);
     gelx::FieldSet fields;
     fields.add("displacement", u);
-    fields.add("cauchy_stress", forms.expression(expression_swelling_stress_q2q1));
-    fields.add("swelling_ratio", forms.expression(expression_swelling_swelling_ratio_q2q1));
+    fields.add("cauchy_stress", forms.expression(expression_crease_stress));
+    fields.add("swelling_ratio", forms.expression(expression_crease_swelling_ratio));
     run.summary = {{"num_dofs", V->dofmap()->index_map->size_global()
                                     * V->dofmap()->index_map_bs()},
                    {"phi0", phi0},
@@ -219,17 +210,15 @@ int main(int argc, char* argv[])
     // The fold's flanks meet at x = 0, where the surface meets its mirror image: the surface's
     // contact with that plane keeps every point of the path off it, so the path approaches
     // the touch (its arc length cut back at the plane) instead of stepping through it
-    gelx::RigidPlaneContact fold(problem, U, *geo.facet_tags, geo.tag("z_max"), 0, +1);
+    gelx::RigidPlaneContact fold(problem, V, *geo.facet_tags, geo.tag("z_max"), 0, +1);
     constexpr double touching = 1e-6; // a gap below this fraction of H: the flanks touch
     gelx::ArcLength continuation(run.comm(), fold, set_load);
     gelx::PathState path = run.start_path(fold);
-    gelx::copy_sub_function(*w, 0, *u); // a restarted run's last point, for the stop test
-    Surface last = surface();
+    Surface last = surface(); // a restarted run's last point, for the stop test
     continuation.run(
         path, p.max_steps,
         {[&](const gelx::StepRecord& pt, gelx::PathState& state)
          {
-           gelx::copy_sub_function(*w, 0, *u);
            last = surface();
            const nlohmann::json quantities
                = {{"chi", chi_at(pt.load)},

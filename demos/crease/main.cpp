@@ -194,11 +194,10 @@ int main(int argc, char* argv[])
     //    scale = H sqrt(dofs), and chi's load factor (0 to 1) weighted by psi = scale: steps
     //    from scale / 200 to scale / 20 (the whole path, h from H to about 4 H, is a few
     //    scales long). The corrector's tolerance |R| <= 1e-7 |dR/dlambda| (the residual of a
-    //    change of chi by 1e-7 of its range): at the fold's tip the gel is squeezed towards
-    //    its dry volume (J -> phi0, where the mixing energy's stiffness diverges) and round-off
-    //    leaves residuals of 1e-9 |dR/dlambda| that no Newton iteration reduces (measured on
-    //    40 x 20 cells: 15 iterations oscillating there at every step down to 1e-6 of the
-    //    path's scale, where 1e-9 stopped the path). Every point's unstable modes from the
+    //    change of chi by 1e-7 of its range): on 40 x 20 cells, at the fold's turn, Newton
+    //    diverges even from predictors 1e-9 |dR/dlambda| off the path, so that only a
+    //    tolerance above that lets the path creep on (1e-9 stopped it there; where it stalls
+    //    all the same: demos/crease/README.md). Every point's unstable modes from the
     //    tangent's inertia (its LDL^T factorisation, which the predictor makes anyway)
     const double scale = p.H * std::sqrt(double(run.summary["num_dofs"]));
     const auto text = [](double v) { return std::to_string(v); };

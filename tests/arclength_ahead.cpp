@@ -16,8 +16,9 @@
 // the circle's point B behind the last point at the attempt's arc length, the distance to B
 // along the circle's tangent there; from that basin Newton on the true residual converges to B,
 // a point of the path. Checks: every step turns the point forward by 2 asin(ds / 2) of its own
-// ds (1e-8: the corrector's tolerance on |R| <= 1e-10 moves the angle by less), and the lured
-// step was cut back and completed at half the arc length. With the check of ArcLength::run
+// ds (1e-8: a residual within the corrector's tolerance, |R| <= 1e-9 |dR/dlambda| <= 2e-9,
+// moves a point on its sphere by less than 1e-9), and the lured step was cut back and
+// completed at half the arc length. With the check of ArcLength::run
 // removed, step 4 turns by -0.1 and every step after it as well (the path retraces: seen).
 
 #include "support.h"
@@ -26,6 +27,7 @@
 #include <gelx/solvers/arclength.h>
 #include <gelx/systems/system.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <petscmat.h>

@@ -459,10 +459,11 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
       _bordered.set_state(bordered.get());
       report = _newton.correct(_bordered, last_point.get());
       // The arc-length sphere meets the path behind the last point as well as ahead of it, and
-      // a corrector that wandered (near a sharp turn, where round-off leaves residuals Newton
-      // does not reduce) can converge to the point behind: the path would then retrace
-      // itself, with every later predictor oriented backwards. Only a point ahead along the
-      // predictor's direction is a step; one behind is retried with a shorter arc length.
+      // a corrector that wandered (next to a nearly singular tangent, where one Newton step
+      // from a close start can throw the iterate far) can converge to the point behind: the
+      // path would then retrace itself, with every later predictor oriented backwards. Only a
+      // point ahead along the predictor's direction is a step; one behind is retried with a
+      // shorter arc length.
       if (report.converged && !ahead_of(x0, l0, t.get(), t_l, psi))
       {
         report.converged = false;

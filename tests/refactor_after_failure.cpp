@@ -5,9 +5,9 @@
 // tangent (a limit point hit exactly, a trial state past admissibility) every later solve with
 // the same KSP failed as well, and a step retried at any smaller size could not pass: the
 // inflation with constraints at 2 ranks stopped after 17 cut-backs, all DIVERGED_PC_FAILED.
-// Here a KSP from gelx::create_linear_solver (MUMPS LU) first meets a diagonal matrix with a
-// zero on its diagonal (MUMPS reports it singular), then the same matrix with that entry set
-// to 2: the second solve must converge to the exact x = b / diag. At 1 and 2 ranks (the zero
+// Here a KSP from gelx::create_linear_solver (MUMPS LU), with the hook, first meets a diagonal
+// matrix with a zero on its diagonal (MUMPS reports it singular), then the same matrix with
+// that entry set to 2: the second solve must converge to the exact x = b / diag. At 1 and 2 ranks (the zero
 // on the last rank).
 
 #include "support.h"
@@ -44,6 +44,7 @@ int main(int argc, char* argv[])
         GELX_PETSC(MatCreateVecs(A, &x, &b));
         GELX_PETSC(VecSet(b, 1.0));
         KSP ksp = gelx::create_linear_solver(comm, "refactor_");
+        gelx::refactor_after_failure(ksp);
         const auto solve = [&]
         {
           GELX_PETSC(KSPSetOperators(ksp, A, A));

@@ -228,7 +228,6 @@ KSP create_linear_solver(MPI_Comm comm, const std::string& prefix)
   GELX_PETSC(KSPCreate(comm, &ksp));
   GELX_PETSC(KSPSetOptionsPrefix(ksp, prefix.c_str()));
   GELX_PETSC(KSPSetFromOptions(ksp));
-  refactor_after_failure(ksp);
   return ksp;
 }
 

@@ -110,8 +110,8 @@ void refuse_unread_options_of(const std::string& prefix);
 /// (Eisenstat-Walker) adapts it instead. Throws InputError for an unknown set.
 void set_linear_solver_defaults(const std::string& prefix);
 
-/// A KSP reading options with `prefix`, defaults from set_linear_solver_defaults, and
-/// factorising afresh after a failed factorisation (refactor_after_failure).
+/// A KSP reading options with `prefix`, defaults from set_linear_solver_defaults. A solver of
+/// a NonlinearSystem then prepares it for that system (prepare_linear_solver, systems/mixed.h).
 KSP create_linear_solver(MPI_Comm comm, const std::string& prefix);
 
 /// After a solve of `ksp` whose factorisation failed (a singular tangent at a limit point, a
@@ -122,7 +122,8 @@ KSP create_linear_solver(MPI_Comm comm, const std::string& prefix);
 /// too (seen on the inflation with constraints at 2 ranks: 17 cut-backs, all
 /// DIVERGED_PC_FAILED). Acts on LU and Cholesky preconditioners (a split's fields, defined
 /// once, would not survive a reset). A KSPSetPostSolve hook, not installed where the KSP has
-/// one already (SNES's Eisenstat-Walker, -snes_ksp_ew).
+/// one already (SNES's Eisenstat-Walker, -snes_ksp_ew). prepare_linear_solver installs it on
+/// every solver of a system.
 void refactor_after_failure(KSP ksp);
 
 /// Value of a real option `-<prefix><name>`, or `fallback` when unset.

@@ -2,6 +2,7 @@
 
 #include <gelx/common/petsc_utils.h>
 #include <gelx/solvers/path.h>
+#include <gelx/systems/mixed.h>
 #include <gelx/systems/problem.h>
 
 #include <dolfinx/fem/assembler.h>
@@ -21,6 +22,7 @@ AdjointGradient::AdjointGradient(
   if (!_objective.value || !_objective.d_state)
     throw std::invalid_argument("AdjointGradient: the objective needs its value and dJ/du");
   _ksp = create_linear_solver(_system.problem().u()->function_space()->mesh()->comm(), prefix);
+  prepare_linear_solver(_ksp, _system);
   _tangent = _system.create_matrix();
   _residual_d_design_matrix = dolfinx::fem::petsc::create_matrix(*_residual_d_design);
 }

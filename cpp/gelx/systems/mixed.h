@@ -48,7 +48,8 @@ void define_displacement_pressure_fields(PC pc, NonlinearSystem& system);
 /// preconditioner is PCFIELDSPLIT, its fields (define_displacement_pressure_fields), which only
 /// the system knows; and a fresh factorisation after a failed one (refactor_after_failure,
 /// petsc_utils.h). Every solver of a system calls it: NewtonSolver, TransientProblem,
-/// DampedDynamics, InertialDynamics and ArcLengthSystem (on its K). Collective.
+/// DampedDynamics, InertialDynamics, ArcLengthSystem (on its K) and AdjointGradient.
+/// Collective.
 void prepare_linear_solver(KSP ksp, NonlinearSystem& system);
 
 } // namespace gelx

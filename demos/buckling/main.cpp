@@ -150,21 +150,18 @@ int main(int argc, char* argv[])
       corrector_iterations += pt.newton.iterations;
       const double deflection = column.lateral_deflection();
       const double axial_force = column.axial_force(), force = axial_force / column.euler_load();
-      results.append_step({{"path", path},
-                           {"step", pt.step},
-                           {"load_factor", pt.load},
-                           {"axial_force", axial_force},
-                           {"axial_force_over_euler", force},
-                           {"deflection_over_L", deflection},
-                           {"elastica_load_over_euler",
-                            P_cr * column.elastica_load_ratio(deflection)},
-                           {"newton_iterations", pt.newton.iterations},
-                           {"cutbacks", pt.cutbacks},
-                           {"stability", std::isnan(pt.stability) ? nlohmann::json(nullptr)
-                                                                  : nlohmann::json(pt.stability)},
-                           {"negative_eigenvalues", pt.negative_eigenvalues >= 0
-                                                        ? nlohmann::json(pt.negative_eigenvalues)
-                                                        : nlohmann::json(nullptr)}});
+      nlohmann::json row = {{"path", path},
+                            {"step", pt.step},
+                            {"load_factor", pt.load},
+                            {"axial_force", axial_force},
+                            {"axial_force_over_euler", force},
+                            {"deflection_over_L", deflection},
+                            {"elastica_load_over_euler",
+                             P_cr * column.elastica_load_ratio(deflection)},
+                            {"newton_iterations", pt.newton.iterations},
+                            {"cutbacks", pt.cutbacks}};
+      row.update(gelx::stability_columns(pt));
+      results.append_step(row);
       run.summary.update({{"arclength_steps", path_steps},
                           {"corrector_iterations_per_step",
                            double(corrector_iterations) / path_steps},

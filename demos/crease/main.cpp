@@ -2,7 +2,7 @@
 //
 // Sample runs:
 //   ./gelx run crease
-//   ./gelx run crease --nx 80 --nz 40 --imperfection 0.002
+//   ./gelx run crease --nx 30 --nz 15          # finer (40 x 20 stalls: README.md)
 //   ./gelx run crease --chi_end 0.3 -arclength_ds_max 2
 //
 // The Flory-Rehner gel of forms/crease.py (thesis Eq. 4.28) in a plane-strain slab
@@ -194,11 +194,11 @@ int main(int argc, char* argv[])
     //    scale = H sqrt(dofs), and chi's load factor (0 to 1) weighted by psi = scale: steps
     //    from scale / 200 to scale / 20 (the whole path, h from H to about 4 H, is a few
     //    scales long). The corrector's tolerance |R| <= 1e-7 |dR/dlambda| (the residual of a
-    //    change of chi by 1e-7 of its range): on 40 x 20 cells, at the fold's turn, Newton
-    //    diverges even from predictors 1e-9 |dR/dlambda| off the path, so that only a
-    //    tolerance above that lets the path creep on (1e-9 stopped it there; where it stalls
-    //    all the same: demos/crease/README.md). Every point's unstable modes from the
-    //    tangent's inertia (its LDL^T factorisation, which the predictor makes anyway)
+    //    change of chi by 1e-7 of its range): on 40 x 20 cells, at a bifurcation just before
+    //    the fold's turn, Newton diverges even from predictors 1e-9 |dR/dlambda| off the path,
+    //    so that only a tolerance above that lets the path creep on (1e-9 stopped it there;
+    //    it stalls all the same: demos/crease/README.md). Every point's unstable modes from
+    //    the tangent's inertia (its LDL^T factorisation, which the predictor makes anyway)
     const double scale = p.H * std::sqrt(double(run.summary["num_dofs"]));
     const auto text = [](double v) { return std::to_string(v); };
     gelx::set_default_options("arclength_", {{"ds", text(scale / 200)},
@@ -229,6 +229,7 @@ int main(int argc, char* argv[])
            nlohmann::json row = gelx::step_columns(pt);
            row.update({{"arc_length", pt.arc_length}, {"limit_point", pt.limit_point}});
            row.update(quantities);
+           row.update(gelx::stability_columns(pt));
            results.append_step(row);
            // The fold: where the path first turns back in chi (the snap), and where the
            // tangent first has a negative eigenvalue

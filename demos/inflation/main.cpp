@@ -146,19 +146,20 @@ int main(int argc, char* argv[])
            curve.time += pt.wall_time;
            state.scene["curve"] = curve;
            results.write_fields(pt.step, fields.update());
-           results.append_step({{"step", pt.step},
-                                {"arc_length", pt.arc_length},
-                                {"pressure_over_G", pt.load},
-                                {"inner_stretch", la},
-                                {"closed_form_pressure_over_G",
-                                 gelx::scenes::InflatedShell::closed_form_pressure(p, la) / p.G},
-                                {"newton_iterations", pt.newton.iterations},
-                                {"cutbacks", pt.cutbacks},
-                                {"limit_point", pt.limit_point},
-                                {"asphericity", departure},
-                                {"negative_eigenvalues", pt.negative_eigenvalues},
-                                {"bifurcation", pt.bifurcation},
-                                {"wall_time", pt.wall_time}});
+           nlohmann::json row
+               = {{"step", pt.step},
+                  {"arc_length", pt.arc_length},
+                  {"pressure_over_G", pt.load},
+                  {"inner_stretch", la},
+                  {"closed_form_pressure_over_G",
+                   gelx::scenes::InflatedShell::closed_form_pressure(p, la) / p.G},
+                  {"newton_iterations", pt.newton.iterations},
+                  {"cutbacks", pt.cutbacks},
+                  {"limit_point", pt.limit_point},
+                  {"asphericity", departure},
+                  {"wall_time", pt.wall_time}};
+           row.update(gelx::stability_columns(pt));
+           results.append_step(row);
            if (pt.bifurcation)
              run.summary["bifurcation"] = {{"step", pt.step},
                                            {"pressure_over_G", pt.load},

@@ -124,6 +124,17 @@ inline nlohmann::json step_columns(const StepRecord& s)
           {"wall_time", s.wall_time}};
 }
 
+/// The columns of a point's stability, as far as the path tracks it (null where it does not):
+/// the tangent's eigenvalue nearest zero, its number of negative eigenvalues, and whether a
+/// bifurcation was passed since the previous point.
+inline nlohmann::json stability_columns(const StepRecord& s)
+{
+  auto tracked = [](bool is, auto value) { return is ? nlohmann::json(value) : nlohmann::json(); };
+  return {{"stability", tracked(!std::isnan(s.stability), s.stability)},
+          {"negative_eigenvalues", tracked(s.negative_eigenvalues >= 0, s.negative_eigenvalues)},
+          {"bifurcation", s.bifurcation}};
+}
+
 /// Sees every completed step with the path's state after it (write output there: a step
 /// reported is complete; keep what must survive a restart in state.scene).
 using StepObserver = std::function<void(const StepRecord&, PathState&)>;

@@ -194,11 +194,12 @@ int main(int argc, char* argv[])
     //    scale = H sqrt(dofs), and chi's load factor (0 to 1) weighted by psi = scale: steps
     //    from scale / 200 to scale / 20 (the whole path, h from H to about 4 H, is a few
     //    scales long). The corrector's tolerance |R| <= 1e-7 |dR/dlambda| (the residual of a
-    //    change of chi by 1e-7 of its range): on 40 x 20 cells, at a bifurcation just before
-    //    the fold's turn, Newton diverges even from predictors 1e-9 |dR/dlambda| off the path,
-    //    so that only a tolerance above that lets the path creep on (1e-9 stopped it there;
-    //    it stalls all the same: demos/crease/README.md). Every point's unstable modes from
-    //    the tangent's inertia (its LDL^T factorisation, which the predictor makes anyway)
+    //    change of chi by 1e-7 of its range): on 40 x 20 cells, at a critical point where
+    //    both the tangent's eigenvalue nearest zero and its mode's load component vanish,
+    //    Newton diverges even from predictors 1e-9 |dR/dlambda| off the path, so that only a
+    //    tolerance above that lets the path creep on (1e-9 stopped it there; it stalls all
+    //    the same: demos/crease/README.md). Every point's unstable modes from the tangent's
+    //    inertia (its LDL^T factorisation, which the predictor makes anyway)
     const double scale = p.H * std::sqrt(double(run.summary["num_dofs"]));
     const auto text = [](double v) { return std::to_string(v); };
     gelx::set_default_options("arclength_", {{"ds", text(scale / 200)},

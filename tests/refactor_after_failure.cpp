@@ -7,8 +7,8 @@
 // inflation with constraints at 2 ranks stopped after 17 cut-backs, all DIVERGED_PC_FAILED.
 // Here a KSP from gelx::create_linear_solver (MUMPS LU), with the hook, first meets a diagonal
 // matrix with a zero on its diagonal (MUMPS reports it singular), then the same matrix with
-// that entry set to 2: the second solve must converge to the exact x = b / diag. At 1 and 2 ranks (the zero
-// on the last rank).
+// that entry set to 2: the second solve must converge to the exact x = b / diag. At 1 and 2
+// ranks (the zero on the last rank).
 
 #include "support.h"
 

@@ -220,17 +220,15 @@ int main(int argc, char* argv[])
         {[&](const gelx::StepRecord& pt, gelx::PathState& state)
          {
            last = surface();
-           const nlohmann::json quantities
-               = {{"chi", chi_at(pt.load)},
-                  {"swelling_ratio", last.far / p.H},
-                  {"valley_depth", last.far - last.valley},
-                  {"fold_gap", last.gap},
-                  {"negative_eigenvalues", pt.negative_eigenvalues}};
+           nlohmann::json quantities = {{"chi", chi_at(pt.load)},
+                                        {"swelling_ratio", last.far / p.H},
+                                        {"valley_depth", last.far - last.valley},
+                                        {"fold_gap", last.gap}};
+           quantities.update(gelx::stability_columns(pt));
            results.write_fields(pt.step, fields.update());
            nlohmann::json row = gelx::step_columns(pt);
            row.update({{"arc_length", pt.arc_length}, {"limit_point", pt.limit_point}});
            row.update(quantities);
-           row.update(gelx::stability_columns(pt));
            results.append_step(row);
            // The fold: where the path first turns back in chi (the snap), and where the
            // tangent first has a negative eigenvalue

@@ -21,44 +21,25 @@
 // completed at half the arc length. With the check of ArcLength::run
 // removed, step 4 turns by -0.1 and every step after it as well (the path retraces: seen).
 
+#include "scalar_path.h"
 #include "support.h"
 
 #include <gelx/common/petsc_utils.h>
 #include <gelx/solvers/arclength.h>
-#include <gelx/systems/system.h>
 
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <petscmat.h>
-#include <stdexcept>
-#include <vector>
 
 namespace
 {
 /// The unit circle as a path of one unknown x and the load lambda, whose residual lures one
 /// corrector attempt to the point behind (lure()).
-class Circle : public gelx::NonlinearSystem
+class Circle : public gelx::test::ScalarPath
 {
 public:
-  explicit Circle(MPI_Comm comm)
-  {
-    GELX_PETSC(VecCreateMPI(comm, 1, PETSC_DETERMINE, &_x));
-    GELX_PETSC(VecSet(_x, 1.0));
-  }
-  ~Circle() override { VecDestroy(&_x); }
-  Circle(const Circle&) = delete;
-  Circle& operator=(const Circle&) = delete;
+  explicit Circle(MPI_Comm comm) : ScalarPath(comm, 1.0) {}
 
-  void set_load(double lambda) { _lambda = lambda; }
-  double x() const
-  {
-    const PetscScalar* v;
-    VecGetArrayRead(_x, &v);
-    const double value = v[0];
-    VecRestoreArrayRead(_x, &v);
-    return value;
-  }
   /// The next residual is the first of a corrector attempt, from the last point at angle
   /// theta0: from it on, lure the iterate towards the point behind
   void lure(double theta0)
@@ -68,67 +49,30 @@ public:
   }
   bool luring() const { return !std::isnan(_lured_from); }
 
-  Vec unknowns() override { return _x; }
-  void unknowns_changed() override {}
-  void residual(Vec r) override
+  double value(double x, double lambda) override
   {
-    const double x = this->x();
-    double value = x * x + _lambda * _lambda - 1;
     if (luring())
     {
       if (!_behind_known)
       {
         // The attempt's predictor: its distance from the last point is the arc length ds
-        const double ds = std::hypot(x - std::cos(_lured_from), _lambda - std::sin(_lured_from));
+        const double ds = std::hypot(x - std::cos(_lured_from), lambda - std::sin(_lured_from));
         const double theta_b = _lured_from - 2 * std::asin(ds / 2);
         _b = {std::cos(theta_b), std::sin(theta_b)};
         _tangent_b = {-std::sin(theta_b), std::cos(theta_b)};
         _basin = ds / 2;
         _behind_known = true;
       }
-      if (std::hypot(x - _b[0], _lambda - _b[1]) < _basin)
+      if (std::hypot(x - _b[0], lambda - _b[1]) < _basin)
         _lured_from = NAN; // in B's basin: the true residual from here on
       else
-        value = _tangent_b[0] * (x - _b[0]) + _tangent_b[1] * (_lambda - _b[1]);
+        return _tangent_b[0] * (x - _b[0]) + _tangent_b[1] * (lambda - _b[1]);
     }
-    GELX_PETSC(VecSetValue(r, 0, value, INSERT_VALUES));
-    GELX_PETSC(VecAssemblyBegin(r));
-    GELX_PETSC(VecAssemblyEnd(r));
+    return x * x + lambda * lambda - 1;
   }
-  void tangent(Mat A) override
-  {
-    GELX_PETSC(MatSetValue(A, 0, 0, luring() ? _tangent_b[0] : 2 * x(), INSERT_VALUES));
-    GELX_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-    GELX_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-  }
-  Vec create_vector() const override
-  {
-    Vec v;
-    GELX_PETSC(VecDuplicate(_x, &v));
-    return v;
-  }
-  Mat create_matrix() const override
-  {
-    MPI_Comm comm;
-    GELX_PETSC(PetscObjectGetComm(reinterpret_cast<PetscObject>(_x), &comm));
-    Mat A;
-    GELX_PETSC(MatCreateAIJ(comm, 1, 1, PETSC_DETERMINE, PETSC_DETERMINE, 1, nullptr, 0,
-                            nullptr, &A));
-    return A;
-  }
-  std::vector<PetscInt> prescribed_rows() const override { return {}; }
-  gelx::NonlinearProblem& problem() override
-  {
-    throw std::logic_error("the circle has no finite-element problem");
-  }
-  const std::vector<PetscInt>& unknown_of_problem_dof() const override
-  {
-    throw std::logic_error("the circle has no finite-element problem");
-  }
+  double derivative(double x, double) override { return luring() ? _tangent_b[0] : 2 * x; }
 
 private:
-  Vec _x;
-  double _lambda = 0;
   double _lured_from = NAN, _basin = 0;
   bool _behind_known = false;
   std::array<double, 2> _b{}, _tangent_b{};

@@ -393,11 +393,11 @@ void ArcLength::run(PathState& state, int max_steps, const std::vector<StepObser
 {
   // The bounds scale with the first step's size, also on a continued path (whose next step
   // size has moved away from it)
-  const double ds_first = real_option(_prefix, "ds", 0.05);
+  const double ds_first = real_option(_prefix, "ds", _default_ds);
   const double ds_max = real_option(_prefix, "ds_max", 10 * ds_first);
   const double ds_min = real_option(_prefix, "ds_min", 1e-6 * ds_first);
   double ds = state.step_size > 0 ? state.step_size : ds_first;
-  const double psi = real_option(_prefix, "psi", 0.0);
+  const double psi = real_option(_prefix, "psi", _default_psi);
   const int target_it = int_option(_prefix, "target_it", 5);
   const double rtol = real_option(_prefix, "rtol", 1e-9);
   const Stability stability = stability_test(_prefix);

@@ -152,6 +152,15 @@ public:
   void run(PathState& state, int max_steps, const std::vector<StepObserver>& observers,
            const std::function<bool(const StepRecord&)>& stop);
 
+  /// The first arc length and the load's weight when the options (-PREFIX_ds, -PREFIX_psi)
+  /// do not set them: by default 0.05 and 0, which suit a load factor and unknowns of order
+  /// one; a driver that knows its path's scale sets its own.
+  void set_default_scale(double ds, double psi)
+  {
+    _default_ds = ds;
+    _default_psi = psi;
+  }
+
   /// Branch switching at a bifurcation (call after run() stopped just past one): the next
   /// predictor leaves the current state along the tangent's eigenvector nearest zero, the mode
   /// of the crossing branch, with the load held; the corrector's hyperplane, a distance ds away
@@ -175,6 +184,7 @@ private:
   std::string _prefix;
   OwnedVec _load;              ///< dR/dlambda at the last point
   bool _switch_pending = false; ///< the next predictor follows state.direction (switch_branch)
+  double _default_ds = 0.05, _default_psi = 0;
 };
 
 /// The vertex of the parabola through three points (s_i, lambda_i): where a limit point

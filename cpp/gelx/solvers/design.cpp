@@ -1,7 +1,7 @@
 #include <gelx/solvers/design.h>
 
 #include <gelx/common/petsc_utils.h>
-#include <gelx/solvers/load_stepping.h>
+#include <gelx/solvers/homotopy.h>
 
 #include <dolfinx/common/MPI.h>
 #include <dolfinx/la/petsc.h>
@@ -145,23 +145,24 @@ void DesignOptimizer::solve_forward()
 
 void DesignOptimizer::solve_forward_by_steps()
 {
-  // Too large a change of the design for one Newton solve: load steps from the last design,
-  // s(t) = s_last + t (s_new - s_last), from the last equilibrium
+  // Too large a change of the design for one Newton solve: from the last equilibrium along
+  // s(t) = s_last + t (s_new - s_last), by load steps and, past a fold of that path (the shape
+  // snaps), by arc length in t
   const OwnedVec target = copy_of(_design_vec);
   _system.set_state(_last_state.get());
-  LoadStepper(_system, _newton, {.secant_predictor = true},
-              [&](double t)
-              {
-                GELX_PETSC(VecAXPBYPCZ(_design_vec, 1 - t, t, 0.0, _last_design.get(),
-                                       target.get()));
-                _design->x()->scatter_fwd();
-              })
-      .run(
-          [&](const StepRecord& step, PathState&)
-          {
-            ++_counts.forward_solves;
-            _counts.newton_iterations += step.newton.iterations;
-          });
+  follow_homotopy(
+      _system, _newton, {.secant_predictor = true},
+      [&](double t)
+      {
+        GELX_PETSC(VecAXPBYPCZ(_design_vec, 1 - t, t, 0.0, _last_design.get(), target.get()));
+        _design->x()->scatter_fwd();
+      },
+      [&](const StepRecord& step, PathState&)
+      {
+        ++_counts.forward_solves;
+        _counts.newton_iterations += step.newton.iterations;
+      },
+      _prefix + "homotopy_");
 }
 
 double DesignOptimizer::evaluate(Vec p, Vec gradient)

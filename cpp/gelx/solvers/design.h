@@ -27,7 +27,7 @@ struct DesignIterate
   /// bound-constrained method: zero at an optimum on a bound)
   double gradient_norm = 0;
   std::vector<double> parameters; ///< p, on every rank
-  int forward_solves = 0;         ///< so far: equilibria solved (Newton solves and load steps)
+  int forward_solves = 0;         ///< so far: equilibria solved (Newton solves, path steps)
   int newton_iterations = 0;      ///< so far, over all forward solves
   int adjoint_solves = 0;         ///< so far
   double forward_time = 0;        ///< so far, in the forward solves (s)
@@ -45,8 +45,10 @@ struct DesignIterate
 /// -design_tao_gatol, ...), by default BLMVM (bound-constrained limited-memory quasi-Newton),
 /// with the bounds of set_bounds. Each evaluation of J and dJ/dp solves the equilibrium at s(p)
 /// by Newton from the last one (the state of the previous evaluation); when that fails, from
-/// the same state by load steps that move s from its last value to the new one (a design
-/// change too large for one Newton solve), then the adjoint (AdjointGradient) gives
+/// the same state along the path that moves s from its last value to the new one (a design
+/// change too large for one Newton solve): by load steps, and by arc length past a fold of
+/// that path, where the shape snaps (follow_homotopy, options prefix PREFIXhomotopy_:
+/// -design_homotopy_ds, ...); then the adjoint (AdjointGradient) gives
 /// dJ/dp = T^T dJ/ds: one forward and one adjoint solve per evaluation, whatever n is.
 ///
 /// The parameters are few (a pattern per slab, a handful of global numbers): rank 0 owns them
@@ -85,8 +87,8 @@ private:
   void set_design(Vec p);
   /// The equilibrium at the design now in the Function, from the last one
   void solve_forward();
-  /// When Newton fails: load steps from the last equilibrium that carry the design from the
-  /// last one to the new one
+  /// When Newton fails: from the last equilibrium along the path that carries the design from
+  /// the last one to the new one (follow_homotopy)
   void solve_forward_by_steps();
   /// The forward solve at p, unless the last one was at p (TAO's last evaluation before an
   /// iterate is usually, not always, the iterate itself: a line search may end on another)

@@ -11,9 +11,11 @@ the isochoric uniaxial stretch of the cell's stress-free state relative to the m
 in-plane direction (cos a, sin a, 0) (s < 1: the cell wants to be shorter along it, as strip A
 of the bistrip, stretched by 1/s before bonding, does; a != 0 makes a bilayer twist as it
 curls: a helix). The objective is a UFL functional of u and the design: here the distance of
-the equilibrium to a target displacement field plus a Tikhonov term that keeps s near a prior,
+the equilibrium to a target displacement field, its elastic energy, and a Tikhonov term that
+keeps s near a prior,
 
-    J = placement_weight/2 int |u - u_target|^2 dX + regularisation/2 int (s - stretch_prior)^2 dX;
+    J = placement_weight/2 int |u - u_target|^2 dX + energy_weight int psi dX
+        + regularisation/2 int (s - stretch_prior)^2 dX;
 
 `distance` is the first integral alone, the distance reported whatever J is (a scene can set
 placement_weight to 0 and add a term UFL cannot write, gelx::Objective's sampled part: the
@@ -40,6 +42,7 @@ K = ufl.Constant(mesh)
 regularisation = ufl.Constant(mesh)  # weight of the Tikhonov term (length^2 / stretch^2)
 stretch_prior = ufl.Constant(mesh)
 placement_weight = ufl.Constant(mesh)
+energy_weight = ufl.Constant(mesh)  # 1/MPa: J in length^5 as the placement term's
 designs = ufl.FunctionSpace(mesh, ufl.VectorElement("DG", cell, 0, dim=2))
 V = ufl.FunctionSpace(mesh, ufl.VectorElement("Lagrange", cell, 2))
 u = ufl.Coefficient(V)
@@ -58,7 +61,7 @@ tangent = ufl.derivative(residual, u, ufl.TrialFunction(V))
 residual_d_prestretch = ufl.derivative(residual, prestretch, ufl.TrialFunction(designs))
 
 distance = ufl.inner(u - u_target, u - u_target) / 2 * dx
-objective = (placement_weight * ufl.inner(u - u_target, u - u_target) / 2
+objective = (placement_weight * ufl.inner(u - u_target, u - u_target) / 2 + energy_weight * psi
              + regularisation / 2 * (stretch - stretch_prior)**2) * dx
 objective_d_state = ufl.derivative(objective, u, ufl.TestFunction(V))
 objective_d_prestretch = ufl.derivative(objective, prestretch, ufl.TestFunction(designs))

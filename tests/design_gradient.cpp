@@ -34,7 +34,10 @@
 // gelx::MultipointConstraint (slip u_y = 0 there), its end x = 10 kept plane with a free macro
 // unknown (u_x = U): the gradient of a reduced, constrained system, P^T on dJ/du and P on
 // lambda (with the twisting design not a symmetry of the whole strip: a problem of its own).
-// At 1 and 2 ranks.
+// The elastic energy as a term of J (1000 int psi dX added to the plain strip's objective,
+// weighed so that its explicit slope, dpsi/ds . ds, is about half the placement's: measured
+// -25 of -79) is tested as well, and that the term is there: its explicit slope must exceed
+// the Tikhonov term's alone tenfold. At 1 and 2 ranks.
 
 #include "design_strip.h"
 #include "strip.h"
@@ -85,6 +88,7 @@ struct Case
   std::string name;
   bool constrained;
   gelx::scenes::DesignObjective objective = gelx::scenes::DesignObjective::placement;
+  double energy_weight = 0;
 };
 
 void taylor_test(MPI_Comm comm, Checks& checks, const Case& c)
@@ -116,7 +120,7 @@ void taylor_test(MPI_Comm comm, Checks& checks, const Case& c)
     system = mpc.get();
   }
   const std::unique_ptr<gelx::AdjointGradient> adjoint
-      = strip.adjoint(*system, c.objective, 0.3, 0.1);
+      = strip.adjoint(*system, c.objective, 0.3, 0.1, c.energy_weight);
 
   // The base design, reached by load steps from the stress-free s = 1: the upper layer's
   // stretch and angle vary along the strip
@@ -161,6 +165,21 @@ void taylor_test(MPI_Comm comm, Checks& checks, const Case& c)
   double slope, wrong_slope;
   GELX_PETSC(VecDot(gradient.get(), ds_vec.get(), &slope));
   GELX_PETSC(VecDot(explicit_part.get(), ds_vec.get(), &wrong_slope));
+  if (c.energy_weight > 0)
+  {
+    // the explicit slope without the energy (the Tikhonov term's alone)
+    const gelx::OwnedVec tikhonov(adjoint->create_design_vector());
+    strip.forms().set("energy_weight", 0.0);
+    gelx::assemble_global_vector(
+        *strip.forms().form(form_design_strip_objective_d_prestretch, {S}), tikhonov.get());
+    strip.forms().set("energy_weight", c.energy_weight);
+    double tikhonov_slope;
+    GELX_PETSC(VecDot(tikhonov.get(), ds_vec.get(), &tikhonov_slope));
+    checks.require(c.name + ": the energy's explicit slope is at work ("
+                       + std::to_string(wrong_slope) + " against the Tikhonov term's "
+                       + std::to_string(tikhonov_slope) + ")",
+                   std::abs(wrong_slope) > 10 * std::abs(tikhonov_slope));
+  }
 
   GELX_PETSC(SNESSetTolerances(newton.snes(), PETSC_DEFAULT, 1e-12, PETSC_DEFAULT, PETSC_DEFAULT,
                                PETSC_DEFAULT));
@@ -221,7 +240,9 @@ int main(int argc, char* argv[])
                       for (const Case& c :
                            {Case{"strip", false}, Case{"half strip, constrained", true},
                             Case{"strip, centreline objective", false,
-                                 gelx::scenes::DesignObjective::centreline}})
+                                 gelx::scenes::DesignObjective::centreline},
+                            Case{"strip, placement and energy", false,
+                                 gelx::scenes::DesignObjective::placement, 1000.0}})
                         taylor_test(comm, checks, c);
                     });
 }

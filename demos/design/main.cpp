@@ -7,6 +7,8 @@
 //   ./gelx run design --design_angle false             # the stretch alone: a ring, no pitch
 //   ./gelx run design -design_tao_monitor              # TAO's own iteration lines
 //   ./gelx run design --objective centreline           # the helix's rates asked, not its placement
+//   ./gelx run design --shape perversion --length 30 --thickness 0.5 --nx 60 --slabs 15 \
+//       --radius 1.2                           # 1 + 2 turns between clamps, perversion at 10
 //
 // A bilayer strip L x W x H of the compressible neo-Hookean solid of thesis Eq. 3.1 (G, K),
 // clamped at x = 0 (which only removes its rigid motions), its two layers prestretched
@@ -34,6 +36,15 @@
 // (as the rms distance to the target) per iteration, and the helix the strip forms, before
 // and after, read off its centreline by the bistrip's helix detector (the middle 80 %):
 // radius and pitch against R and P (README.md).
+//
+// With --shape perversion the target is a right-handed helix of turns_before whole turns, a
+// perversion at perversion_at, and a left-handed one of turns_after whole turns, of one radius
+// (their pitch follows from the turns' length), the strip held between two clamps: after whole
+// turns the far end's frame is the clamp's again, so its placement is a translation. From
+// rest, the far clamp follows the rigid motion of the end of a rod whose rates grow with the
+// prestretch (a translation alone compresses the straight strip, which buckles). The start
+// flips the angle's sign past the perversion; the detector reports where the twist changes
+// sign and the turns on each side.
 
 #include "strip.h"
 
@@ -47,44 +58,96 @@
 
 namespace
 {
-/// The helix's placement of the strip (see the header): the displacement x*(X) - X
+using Vector = std::array<double, 3>;
+
+/// A rod of constant curvature and twist from the clamp at x = 0, whose frame (t, d1, d2)
+/// starts as (e_x, e_y, e_z): a helix of radius R and pitch P (see the header). Its rates may
+/// be scaled (the path from the straight strip to the helix, scale 0 to 1).
 struct HelixTarget
 {
   double radius, pitch, width, thickness;
-  /// The helix's curvature kappa = R / (R^2 + c^2) and torsion tau = c / (R^2 + c^2), c = P / 2 pi
-  double curvature() const { return radius / (radius * radius + c() * c()); }
-  double torsion() const { return c() / (radius * radius + c() * c()); }
+  int hand = 1;     ///< +1 right-handed (torsion > 0), -1 left-handed
+  double scale = 1; ///< the rates' factor
+  /// The helix's curvature kappa = R / (R^2 + c^2) and torsion tau = hand c / (R^2 + c^2),
+  /// c = P / 2 pi
+  double curvature() const { return scale * radius / (radius * radius + c() * c()); }
+  double torsion() const { return scale * hand * c() / (radius * radius + c() * c()); }
   double c() const { return pitch / (2 * M_PI); }
-  /// x*(X) - X at X
-  std::array<double, 3> displacement(const double* X) const
+  double rate() const { return std::hypot(curvature(), torsion()); }
+  /// The unit axis n = (tau, -kappa, 0) / omega about which the frame turns at the rate omega
+  Vector axis() const { return {torsion() / rate(), -curvature() / rate(), 0}; }
+  /// The frame's rotation after arc length s, applied to v
+  Vector turn(double s, const Vector& v) const
   {
-    const double kappa = curvature(), tau = torsion(), omega = std::hypot(kappa, tau);
-    // The rotation by angle omega X1 about the fixed axis n = (tau, -kappa, 0) / omega
-    const std::array<double, 3> n = {tau / omega, -kappa / omega, 0};
-    const double angle = omega * X[0], cs = std::cos(angle), sn = std::sin(angle);
-    auto rotate = [&](const std::array<double, 3>& v)
-    {
-      const double along = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
-      const std::array<double, 3> cross
-          = {n[1] * v[2] - n[2] * v[1], n[2] * v[0] - n[0] * v[2], n[0] * v[1] - n[1] * v[0]};
-      std::array<double, 3> r;
-      for (int i = 0; i < 3; ++i)
-        r[i] = v[i] * cs + cross[i] * sn + n[i] * along * (1 - cs);
-      return r;
-    };
-    // r(X1) = r(0) + int_0^X1 t: the part of e_x along n advances, the rest turns
-    const double along = n[0];
-    const std::array<double, 3> normal_part = {1 - along * n[0], -along * n[1], -along * n[2]};
-    const std::array<double, 3> n_cross_ex = {0, n[2], -n[1]};
-    std::array<double, 3> x;
-    const std::array<double, 3> d1 = rotate({0, 1, 0}), d2 = rotate({0, 0, 1});
+    if (rate() == 0)
+      return v;
+    const Vector n = axis();
+    const double cs = std::cos(rate() * s), sn = std::sin(rate() * s);
+    const double along = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
+    const Vector cross
+        = {n[1] * v[2] - n[2] * v[1], n[2] * v[0] - n[0] * v[2], n[0] * v[1] - n[1] * v[0]};
+    Vector r;
     for (int i = 0; i < 3; ++i)
-    {
-      const double r = (i == 1 ? width / 2 : i == 2 ? thickness / 2 : 0) + n[i] * along * X[0]
-                       + normal_part[i] * sn / omega + n_cross_ex[i] * (1 - cs) / omega;
-      x[i] = r + (X[1] - width / 2) * d1[i] + (X[2] - thickness / 2) * d2[i];
-    }
-    return {x[0] - X[0], x[1] - X[1], x[2] - X[2]};
+      r[i] = v[i] * cs + cross[i] * sn + n[i] * along * (1 - cs);
+    return r;
+  }
+  /// r(s) - r(0) = int_0^s t: the part of e_x along n advances, the rest turns
+  Vector advance(double s) const
+  {
+    if (rate() == 0)
+      return {s, 0, 0};
+    const Vector n = axis();
+    const double omega = rate(), cs = std::cos(omega * s), sn = std::sin(omega * s);
+    const Vector normal_part = {1 - n[0] * n[0], -n[0] * n[1], -n[0] * n[2]};
+    const Vector n_cross_ex = {0, n[2], -n[1]};
+    Vector r;
+    for (int i = 0; i < 3; ++i)
+      r[i] = n[i] * n[0] * s + normal_part[i] * sn / omega + n_cross_ex[i] * (1 - cs) / omega;
+    return r;
+  }
+  /// x*(X) - X at X
+  Vector displacement(const double* X) const
+  {
+    const Vector r = advance(X[0]), d1 = turn(X[0], {0, 1, 0}), d2 = turn(X[0], {0, 0, 1});
+    const Vector start = {0, width / 2, thickness / 2};
+    Vector u;
+    for (int i = 0; i < 3; ++i)
+      u[i] = start[i] + r[i] + (X[1] - width / 2) * d1[i] + (X[2] - thickness / 2) * d2[i]
+             - X[i];
+    return u;
+  }
+};
+
+/// Two helices of opposite hands joined by a perversion at X1 = at: the second continues the
+/// first's centreline and frame. With whole turns on both sides (the scene's target) the
+/// frame at the perversion and at the far end is the clamp's again: the far end's placement
+/// is a translation. With the rates scaled, the far end's placement is the rigid motion
+/// that carries a second clamp from the straight strip to that translation.
+struct PerversionTarget
+{
+  HelixTarget before, after;
+  double at;
+  Vector displacement(const double* X) const
+  {
+    if (X[0] <= at)
+      return before.displacement(X);
+    const double s = X[0] - at;
+    const Vector joint = before.advance(at), r = before.turn(at, after.advance(s)),
+                 d1 = before.turn(at, after.turn(s, {0, 1, 0})),
+                 d2 = before.turn(at, after.turn(s, {0, 0, 1}));
+    const Vector start = {0, before.width / 2, before.thickness / 2};
+    Vector u;
+    for (int i = 0; i < 3; ++i)
+      u[i] = start[i] + joint[i] + r[i] + (X[1] - before.width / 2) * d1[i]
+             + (X[2] - before.thickness / 2) * d2[i] - X[i];
+    return u;
+  }
+  /// The same with both helices' rates scaled by t
+  PerversionTarget scaled(double t) const
+  {
+    PerversionTarget path = *this;
+    path.before.scale = path.after.scale = t;
+    return path;
   }
 };
 } // namespace
@@ -100,7 +163,9 @@ int main(int argc, char* argv[])
   int nx = 40, ny = 2, nz = 2;
   double G = 1, K = 10, radius = 3, pitch = 6;
   double stretch_min = 0.5, stretch_max = 1.2, angle_max = 1.2;
-  std::string objective = "placement";
+  std::string objective = "placement", shape = "helix";
+  double perversion_at = 10;
+  int turns_before = 1, turns_after = 2;
   gelx::Parameters prm;
   prm.bind("geometry", "length", g.length, "strip length along x (mm)", gelx::Parameters::positive);
   prm.bind("geometry", "width", g.width, "strip width along y (mm)", gelx::Parameters::positive);
@@ -134,6 +199,19 @@ int main(int argc, char* argv[])
            "strip; 'centreline', the distance of the centreline's curvature and twist (the "
            "helix detector's, over the middle 80 %) to the helix's, its placement left free",
            gelx::Parameters::one_of({"placement", "centreline"}));
+  prm.bind("target", "shape", shape,
+           "'helix': one helix of radius and pitch, the far end free; 'perversion': a "
+           "right-handed helix of turns_before whole turns, a perversion at perversion_at, a "
+           "left-handed helix of turns_after whole turns, both of radius `radius`, between two "
+           "clamps (the pitch follows from the turns' length; --pitch is not used)",
+           gelx::Parameters::one_of({"helix", "perversion"}));
+  prm.bind("target", "perversion_at", perversion_at,
+           "position of the perversion along the strip, a slab boundary (mm)",
+           gelx::Parameters::positive);
+  prm.bind("target", "turns_before", turns_before, "whole helical turns before the perversion",
+           [](int n) { return n >= 1 ? "" : "must be at least 1"; });
+  prm.bind("target", "turns_after", turns_after, "whole helical turns after the perversion",
+           [](int n) { return n >= 1 ? "" : "must be at least 1"; });
   prm.bind("design", "angle_max", angle_max, "bound of |a| (radians, below pi/2)",
            [](double a) { return a > 0 && a < M_PI / 2 ? "" : "must lie in (0, pi/2)"; });
 
@@ -145,9 +223,39 @@ int main(int argc, char* argv[])
       throw gelx::InputError("nx must be at least the number of slabs");
     g.cells = {std::size_t(nx), std::size_t(ny), std::size_t(nz)};
 
-    // 2. The strip and its target: the helix's placement
-    gelx::scenes::DesignStrip strip(run.comm(), g, G, K);
+    // 2. The strip and its target: the helix's placement, or the perversion's between two
+    //    clamps, its helices' pitch set by their turns: a turn of length Lambda on a helix of
+    //    radius R has c = P / 2 pi = sqrt((Lambda / 2 pi)^2 - R^2)
+    const bool perversion = shape == "perversion";
+    if (perversion)
+    {
+      if (objective != "placement" || !g.design_angle)
+        throw gelx::InputError("the perversion needs --objective placement and --design_angle "
+                               "true (its helices' hands are the prestretch's angles)");
+      const double turn = perversion_at / turns_before;
+      if (perversion_at >= g.length
+          || std::abs((g.length - perversion_at) / turns_after - turn) > 1e-9 * turn)
+        throw gelx::InputError("the perversion's helices need turns of one length: "
+                               "perversion_at / turns_before = (length - perversion_at) / "
+                               "turns_after");
+      if (radius >= turn / (2 * M_PI))
+        throw gelx::InputError("radius must be below the turn's length / 2 pi = "
+                               + std::to_string(turn / (2 * M_PI)) + " mm");
+      const double boundary = perversion_at / g.length * g.slabs;
+      if (std::abs(boundary - std::round(boundary)) > 1e-9)
+        throw gelx::InputError("perversion_at must be a slab boundary (a multiple of length / "
+                               "slabs)");
+      pitch = 2 * M_PI * std::sqrt(std::pow(turn / (2 * M_PI), 2) - radius * radius);
+    }
     const HelixTarget helix{radius, pitch, g.width, g.thickness};
+    const PerversionTarget perverted{helix, {radius, pitch, g.width, g.thickness, -1},
+                                     perversion_at};
+    auto target_displacement = [&](const double* X)
+    { return perversion ? perverted.displacement(X) : helix.displacement(X); };
+    if (perversion)
+      g.far_end = [perverted](double t, const std::array<double, 3>& X)
+      { return perverted.scaled(t).displacement(X.data()); };
+    gelx::scenes::DesignStrip strip(run.comm(), g, G, K);
     strip.target()->interpolate(
         [&](auto X)
         {
@@ -155,7 +263,7 @@ int main(int argc, char* argv[])
           for (std::size_t i = 0; i < X.shape(1); ++i)
           {
             const double point[3] = {X(0, i), X(1, i), X(2, i)};
-            const std::array<double, 3> u = helix.displacement(point);
+            const std::array<double, 3> u = target_displacement(point);
             for (int c = 0; c < 3; ++c)
               values(c, i) = u[c];
           }
@@ -174,9 +282,11 @@ int main(int argc, char* argv[])
         const int i = layer * per_layer + k;
         const double share = g.design_lower ? misfit / 2 : misfit;
         p[i] = std::clamp(layer == 0 ? 1 - share : 1 + share, stretch_min, stretch_max);
+        // the perversion's second helix is left-handed
+        const bool flipped = perversion && (k + 0.5) * g.length / n > perversion_at;
         if (g.design_angle)
           std::tie(p[i + n], lower[i + n], upper[i + n])
-              = std::make_tuple(a0, -angle_max, angle_max);
+              = std::make_tuple(flipped ? -a0 : a0, -angle_max, angle_max);
       }
     // A restart (--restart) continues from the checkpoint of the last iterate written: its
     // design, its equilibrium (the checkpoint's unknowns) and the history so far
@@ -193,37 +303,69 @@ int main(int argc, char* argv[])
     else
       strip.solve_from_rest(strip.problem(), newton, p, fixed_angle);
     const double volume = g.length * g.width * g.thickness;
-    // The helix the strip forms: its centreline's mean curvature and twist away from the ends
-    // (the clamp's boundary layer and the free end's), the middle 80 % of its length
-    struct Helix
-    {
-      double radius, pitch;
-    };
-    auto helix_of = [&](const dolfinx::fem::Function<double>& u)
+    // The shape formed, read off the centreline by the bistrip's detector: the helix's radius
+    // and pitch from the mean curvature and twist away from the ends' boundary layers (the
+    // middle 80 % of the strip, or of each of the perversion's helices); for the perversion
+    // also where the twist changes sign and the turns on each side, int |(kappa, tau)| ds / 2 pi
+    auto shape_of = [&](const dolfinx::fem::Function<double>& u)
     {
       const gelx::scenes::CentrelineSamples samples = strip.centreline(u);
       const auto analysis = gelx::scenes::analyse_centreline(samples);
-      double kappa = 0, tau = 0;
+      auto in_span = [&](double Z, double from, double to)
+      { return Z >= from + 0.1 * (to - from) && Z <= to - 0.1 * (to - from); };
+      double kappa = 0, tau = 0, turns[2] = {0, 0};
       int count = 0;
+      const double h = samples.Z[1] - samples.Z[0];
       for (std::size_t i = 0; i < samples.Z.size(); ++i)
-        if (strip.measured(samples.Z[i]))
+      {
+        const double Z = samples.Z[i], k = analysis.curvature[i], t = analysis.twist[i];
+        const bool measured
+            = perversion ? in_span(Z, 0, perversion_at) || in_span(Z, perversion_at, g.length)
+                         : strip.measured(Z);
+        if (measured)
         {
-          kappa += analysis.curvature[i];
-          tau += analysis.twist[i];
+          kappa += k;
+          tau += perversion ? std::abs(t) : t;
           ++count;
         }
+        // the trapezoidal rule on each side (a sample at the perversion ends one and starts
+        // the other)
+        const double rate = std::hypot(k, t) / (2 * M_PI);
+        const bool end = i == 0 || i + 1 == samples.Z.size();
+        if (std::abs(Z - perversion_at) < h / 2)
+          turns[0] += h / 2 * rate, turns[1] += h / 2 * rate;
+        else
+          turns[Z > perversion_at] += (end ? h / 2 : h) * rate;
+      }
       kappa /= count;
       tau /= count;
       const double k2 = kappa * kappa + tau * tau;
-      return Helix{kappa / k2, 2 * M_PI * std::abs(tau) / k2};
+      nlohmann::json measures
+          = {{"helix_radius", kappa / k2}, {"helix_pitch", 2 * M_PI * std::abs(tau) / k2}};
+      if (perversion)
+      {
+        const auto& found = analysis.perversions;
+        const auto nearest = std::min_element(
+            found.begin(), found.end(), [&](double a, double b)
+            { return std::abs(a - perversion_at) < std::abs(b - perversion_at); });
+        measures.update({{"perversions", found.size()},
+                         {"perversion_position",
+                          nearest == found.end() ? nlohmann::json() : nlohmann::json(*nearest)},
+                         {"helix_turns_before", turns[0]},
+                         {"helix_turns_after", turns[1]}});
+      }
+      return measures;
     };
-    const Helix target = helix_of(*strip.target());
-    if (!restarted)
+    auto prefixed = [](const std::string& prefix, const nlohmann::json& measures)
     {
-      const Helix start = helix_of(*strip.displacement());
-      run.summary.update(
-          {{"start_helix_radius", start.radius}, {"start_helix_pitch", start.pitch}});
-    }
+      nlohmann::json renamed;
+      for (const auto& [key, value] : measures.items())
+        renamed[prefix + key] = value;
+      return renamed;
+    };
+    const nlohmann::json target = shape_of(*strip.target());
+    if (!restarted)
+      run.summary.update(prefixed("start_", shape_of(*strip.displacement())));
 
     gelx::ResultsWriter& results = run.results(strip.mesh().mesh);
     gelx::FieldSet fields;
@@ -297,12 +439,9 @@ int main(int argc, char* argv[])
           const double wall_time = total("wall_time", it.wall_time);
           const double rms = std::sqrt(2 * gelx::assemble_global_scalar(*distance) / volume);
           const double gradient_ratio = it.gradient_norm / path.scene["gradient0"].get<double>();
-          const Helix shape = helix_of(*strip.displacement());
-          nlohmann::json row = {{"step", iteration},
-                                {"rms_distance", rms},
-                                {"helix_radius", shape.radius},
-                                {"helix_pitch", shape.pitch},
-                                {"gradient_norm_ratio", gradient_ratio}};
+          nlohmann::json row = {{"step", iteration}, {"rms_distance", rms}};
+          row.update(shape_of(*strip.displacement()));
+          row["gradient_norm_ratio"] = gradient_ratio;
           if (centreline) // the rms of the rates' errors over the middle 80 %
             row["rms_rate_error"] = std::sqrt(2 * it.objective / strip.measured_length());
           row.update(totals);
@@ -342,19 +481,19 @@ int main(int argc, char* argv[])
         });
     results.write_fields(1, fields.update());
 
-    // 5. The helix formed, against the target
-    const Helix end = helix_of(*strip.displacement());
+    // 5. The shape formed, against the target
+    const nlohmann::json end = shape_of(*strip.displacement());
+    run.summary.update(end);
+    run.summary.update(prefixed("target_", target));
     run.summary.update({{"num_dofs", strip.problem().u()->function_space()->dofmap()->index_map
                                          ->size_global() * 3},
                         {"num_parameters", m},
                         {"optimizer_reason", reason},
                         {"target_radius", radius},
                         {"target_pitch", pitch},
-                        {"target_helix_radius", target.radius},
-                        {"target_helix_pitch", target.pitch},
-                        {"helix_radius", end.radius},
-                        {"helix_pitch", end.pitch},
-                        {"radius_error", std::abs(end.radius - radius) / radius},
-                        {"pitch_error", std::abs(end.pitch - pitch) / pitch}});
+                        {"radius_error", std::abs(end["helix_radius"].get<double>() - radius)
+                                             / radius},
+                        {"pitch_error", std::abs(end["helix_pitch"].get<double>() - pitch)
+                                            / pitch}});
   });
 }

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <dolfinx/fem/utils.h>
 #include <gelx/common/petsc_utils.h>
-#include <gelx/solvers/load_stepping.h>
+#include <gelx/solvers/homotopy.h>
 
 using namespace dolfinx;
 
@@ -35,13 +35,21 @@ DesignStrip::DesignStrip(MPI_Comm comm, const DesignStripGeometry& geometry, dou
           functionspace_form_design_strip_residual_d_prestretch, "prestretch", _mesh.mesh))),
       _forms(_mesh.mesh, {{"u", _u}, {"u_target", _u_target}, {"prestretch", _prestretch}},
              {{"G", G}, {"K", K}, {"regularisation", regularisation}, {"stretch_prior", 1.0},
-              {"placement_weight", 1.0}})
+              {"placement_weight", 1.0}, {"energy_weight", 0.0}})
 {
   auto V = _u->function_space();
   set_design(std::vector<double>(_geometry.num_parameters(), 1.0));
   _bcs = std::make_unique<DirichletConditions>(V, _mesh.facet_tags);
   for (int k = 0; k < 3; ++k)
     _bcs->fix(_mesh.tag("x_min"), k);
+  if (_geometry.far_end)
+  {
+    for (int k = 0; k < 3; ++k)
+      _bcs->prescribe(_mesh.tag("x_max"), k,
+                      [far_end = _geometry.far_end, k](double t, const std::array<double, 3>& X)
+                      { return far_end(t, X)[k]; });
+    _bcs->update(1);
+  }
   _problem = std::make_unique<NonlinearProblem>(
       _u, _forms.form(form_design_strip_residual, {V}),
       _forms.form(form_design_strip_tangent, {V, V}), _bcs->bcs(),
@@ -74,25 +82,28 @@ void DesignStrip::solve_from_rest(NonlinearSystem& system, NewtonSolver& newton,
 {
   GELX_PETSC(VecSet(system.unknowns(), 0.0));
   system.unknowns_changed();
-  LoadStepper(system, newton, {.dt = 0.025, .secant_predictor = true},
-              [&](double t)
-              {
-                // the stretches from 1 (stress free whatever the angle) to theirs
-                std::vector<double> partial(p);
-                for (int layer = 0; layer < (_geometry.design_lower ? 2 : 1); ++layer)
-                  for (int k = 0; k < _geometry.slabs; ++k)
-                  {
-                    const int i = layer * _geometry.parameters_per_layer() + k;
-                    partial[i] = 1 + t * (p[i] - 1);
-                  }
-                set_design(partial, angle);
-              })
-      .run();
+  follow_homotopy(
+      system, newton, {.dt = 0.025, .secant_predictor = true},
+      [&](double t)
+      {
+        // the stretches from 1 (stress free whatever the angle) to theirs
+        std::vector<double> partial(p);
+        for (int layer = 0; layer < (_geometry.design_lower ? 2 : 1); ++layer)
+          for (int k = 0; k < _geometry.slabs; ++k)
+          {
+            const int i = layer * _geometry.parameters_per_layer() + k;
+            partial[i] = 1 + t * (p[i] - 1);
+          }
+        set_design(partial, angle);
+        _bcs->update(t);
+      },
+      nullptr, "rest_");
 }
 
 std::unique_ptr<AdjointGradient> DesignStrip::adjoint(NonlinearSystem& system,
                                                      DesignObjective objective,
-                                                     double curvature, double twist)
+                                                     double curvature, double twist,
+                                                     double energy_weight)
 {
   auto V = _u->function_space();
   auto D = _prestretch->function_space();
@@ -101,6 +112,7 @@ std::unique_ptr<AdjointGradient> DesignStrip::adjoint(NonlinearSystem& system,
               _forms.form(form_design_strip_objective_d_prestretch, {D})};
   const bool centreline = objective == DesignObjective::centreline;
   _forms.set("placement_weight", centreline ? 0.0 : 1.0);
+  _forms.set("energy_weight", energy_weight);
   if (centreline)
     std::tie(J.sampled_value, J.add_sampled_d_state) = centreline_objective(curvature, twist);
   return std::make_unique<AdjointGradient>(

@@ -35,13 +35,17 @@ struct DesignStripGeometry
   /// is stress free): with both layers free the strip can curl without shortening its
   /// centreline (one layer shorter, the other longer), as a target of given arc length needs.
   bool design_lower = false;
+  /// When set, the far end x = length is clamped too: its displacement at X when
+  /// solve_from_rest's load is t (a rigid motion; from 0 at t = 0), and at t = 1 after it.
+  std::function<std::array<double, 3>(double t, const std::array<double, 3>& X)> far_end;
   int parameters_per_layer() const { return design_angle ? 2 * slabs : slabs; }
   int num_parameters() const { return (design_lower ? 2 : 1) * parameters_per_layer(); }
 };
 
 /// The strip [0, length] x [0, width] x [0, thickness], compressible neo-Hookean (Eq. 3.1,
-/// G and K), clamped at x = 0. Its cells carry the prestretch of forms/design_strip.py: the
-/// stretch s of their stress-free state along the in-plane direction at angle a from x. In
+/// G and K), clamped at x = 0 (and, with far_end, at x = length). Its cells carry the
+/// prestretch of forms/design_strip.py: the stretch s of their stress-free state along the
+/// in-plane direction at angle a from x. In
 /// the upper layer (z > thickness/2), slab k (length/slabs long) has s = p_k and, with
 /// design_angle, a = p_{slabs + k}; the lower layer is stress free (s = 1), or, with
 /// design_lower, designed likewise by the next parameters_per_layer() ones. s < 1 in the upper
@@ -49,7 +53,8 @@ struct DesignStripGeometry
 /// misfits (Timoshenko's bimetal with equal layers); a != 0 twists it as it curls, into a
 /// helix. The objective (DesignObjective) is the distance to a target displacement field,
 /// 1/2 int |u - u_target|^2 dX, or the distance of the centreline's curvature and twist to a
-/// helix's (centreline_objective()), plus a Tikhonov term regularisation/2 int (s - 1)^2 dX.
+/// helix's (centreline_objective()), plus a Tikhonov term regularisation/2 int (s - 1)^2 dX
+/// and, if asked, a multiple of the elastic energy int psi dX.
 enum class DesignObjective
 {
   placement, ///< the distance to the target displacement (a form: forms/design_strip.py)
@@ -76,9 +81,10 @@ public:
   int parameter_of(const double* X, int component) const;
   /// The design p (num_parameters() values); the angle `angle` where it is not designed.
   void set_design(const std::vector<double>& p, double angle = 0);
-  /// The equilibrium of `system` (this problem or a decorator of it) at the design p, by load
-  /// steps from the stress-free state (its unknowns 0, the stretches 1). Throws
-  /// ConvergenceError when the path fails. Collective.
+  /// The equilibrium of `system` (this problem or a decorator of it) at the design p, along
+  /// the path from the stress-free state (its unknowns 0, the stretches 1, the far end, if
+  /// clamped, at rest): load steps, arc length past a fold (follow_homotopy, options prefix
+  /// `rest_`). Throws ConvergenceError when the path fails. Collective.
   void solve_from_rest(NonlinearSystem& system, NewtonSolver& newton,
                        const std::vector<double>& p, double angle = 0);
 
@@ -95,10 +101,12 @@ public:
   /// The adjoint gradient of an objective on `system` (this problem or a decorator of it);
   /// the centreline's against the helix of curvature `curvature` and twist `twist`. It sets
   /// the objective form's placement_weight (1 for the placement, 0 for the centreline), so
-  /// one strip serves one objective at a time.
+  /// one strip serves one objective at a time. `energy_weight` times the elastic energy
+  /// int psi dX is added to either.
   std::unique_ptr<AdjointGradient> adjoint(NonlinearSystem& system,
                                            DesignObjective objective = DesignObjective::placement,
-                                           double curvature = 0, double twist = 0);
+                                           double curvature = 0, double twist = 0,
+                                           double energy_weight = 0);
 
   /// The helix detector's rates as an objective (UFL cannot write it: it reads a few nodal
   /// values): J = 1/2 sum_k h [(kappa_k - curvature)^2 + (tau_k - twist)^2] over the node

@@ -79,6 +79,13 @@ const std::map<std::string, Dimension>& dimensions()
       {"target_radius", D::length}, {"target_pitch", D::length},
       {"target_helix_radius", D::length}, {"target_helix_pitch", D::length},
       {"start_helix_radius", D::length}, {"start_helix_pitch", D::length},
+      // and the perversion asked for (demos/design --shape perversion)
+      {"perversion_position", D::length}, {"helix_turns_before", D::none},
+      {"helix_turns_after", D::none}, {"start_perversions", D::none},
+      {"start_perversion_position", D::length}, {"start_helix_turns_before", D::none},
+      {"start_helix_turns_after", D::none}, {"target_perversions", D::none},
+      {"target_perversion_position", D::length}, {"target_helix_turns_before", D::none},
+      {"target_helix_turns_after", D::none},
       {"radius_error", D::none}, {"pitch_error", D::none}, {"angle", D::none},
       {"num_parameters", D::none}, {"optimizer_reason", D::none}, {"forward_solves", D::none},
       {"adjoint_solves", D::none}, {"layer", D::text},

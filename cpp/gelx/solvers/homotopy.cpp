@@ -15,7 +15,8 @@ void follow_homotopy(NonlinearSystem& system, NewtonSolver& newton, LoadStepping
                      const std::string& prefix)
 {
   const OwnedVec start = copy_of(system.unknowns());
-  const std::vector<StepObserver> observers{observe};
+  const std::vector<StepObserver> observers
+      = observe ? std::vector<StepObserver>{observe} : std::vector<StepObserver>{};
   PathState steps;
   try
   {
@@ -49,7 +50,8 @@ void follow_homotopy(NonlinearSystem& system, NewtonSolver& newton, LoadStepping
       path, int_option(prefix, "max_steps", 200),
       {[&](const StepRecord& record, PathState& state)
        {
-         observe(record, state);
+         if (observe)
+           observe(record, state);
          last = record;
          if (record.load < 1)
          {
@@ -79,7 +81,8 @@ void follow_homotopy(NonlinearSystem& system, NewtonSolver& newton, LoadStepping
   if (!landing.newton.converged)
     throw ConvergenceError("the homotopy's path passed t = 1, but Newton at t = 1 from it failed ("
                            + landing.newton.reason + ")");
-  observe(landing, path);
+  if (observe)
+    observe(landing, path);
 }
 
 } // namespace gelx

@@ -311,25 +311,25 @@ int main(int argc, char* argv[])
     {
       const gelx::scenes::CentrelineSamples samples = strip.centreline(u);
       const auto analysis = gelx::scenes::analyse_centreline(samples);
-      auto in_span = [&](double Z, double from, double to)
-      { return Z >= from + 0.1 * (to - from) && Z <= to - 0.1 * (to - from); };
       double kappa = 0, tau = 0, turns[2] = {0, 0};
       int count = 0;
       const double h = samples.Z[1] - samples.Z[0];
       for (std::size_t i = 0; i < samples.Z.size(); ++i)
       {
         const double Z = samples.Z[i], k = analysis.curvature[i], t = analysis.twist[i];
-        const bool measured
-            = perversion ? in_span(Z, 0, perversion_at) || in_span(Z, perversion_at, g.length)
-                         : strip.measured(Z);
+        const bool measured = perversion ? strip.measured(Z, 0, perversion_at)
+                                               || strip.measured(Z, perversion_at, g.length)
+                                         : strip.measured(Z);
         if (measured)
         {
           kappa += k;
           tau += perversion ? std::abs(t) : t;
           ++count;
         }
-        // the trapezoidal rule on each side (a sample at the perversion ends one and starts
-        // the other)
+        if (!perversion)
+          continue;
+        // the turns by the trapezoidal rule on each side (a sample at the perversion ends one
+        // and starts the other)
         const double rate = std::hypot(k, t) / (2 * M_PI);
         const bool end = i == 0 || i + 1 == samples.Z.size();
         if (std::abs(Z - perversion_at) < h / 2)

@@ -91,9 +91,11 @@ public:
   /// Whether the reference position Z along the strip is in the span where its helix is
   /// measured: the middle 80 %, away from the clamp's and the free end's boundary layers
   /// (the detector's mean in demos/design, and the centreline objective)
-  bool measured(double Z) const
+  bool measured(double Z) const { return measured(Z, 0, _geometry.length); }
+  /// The same rule for a helix on [from, to] (each side of a perversion)
+  static bool measured(double Z, double from, double to)
   {
-    return Z >= 0.1 * _geometry.length && Z <= 0.9 * _geometry.length;
+    return Z >= from + 0.1 * (to - from) && Z <= to - 0.1 * (to - from);
   }
   /// The length of that span
   double measured_length() const { return 0.8 * _geometry.length; }

@@ -14,7 +14,7 @@ void follow_homotopy(NonlinearSystem& system, NewtonSolver& newton, LoadStepping
                      const std::function<void(double)>& apply_load, const StepObserver& observe,
                      const std::string& prefix)
 {
-  const OwnedVec start = copy_of(system.unknowns());
+  OwnedVec start = copy_of(system.unknowns());
   const std::vector<StepObserver> observers
       = observe ? std::vector<StepObserver>{observe} : std::vector<StepObserver>{};
   PathState steps;
@@ -33,12 +33,12 @@ void follow_homotopy(NonlinearSystem& system, NewtonSolver& newton, LoadStepping
 
   // The state holds the last completed load step. Arc length in t from there, on the scale
   // of the way the load steps came.
+  PetscReal moved;
+  // start becomes x(t) - x(0): it is not needed after this
+  GELX_PETSC(VecAYPX(start.get(), -1.0, system.unknowns()));
+  GELX_PETSC(VecNorm(start.get(), NORM_2, &moved));
   OwnedVec before = copy_of(system.unknowns());
   double before_load = steps.load;
-  GELX_PETSC(VecAXPY(before.get(), -1.0, start.get()));
-  PetscReal moved;
-  GELX_PETSC(VecNorm(before.get(), NORM_2, &moved));
-  GELX_PETSC(VecCopy(system.unknowns(), before.get()));
   const double psi = moved / steps.load;
   const MPI_Comm comm = PetscObjectComm((PetscObject)newton.snes());
   ArcLength continuation(comm, system, apply_load, prefix);

@@ -8,7 +8,8 @@ Unknowns w = (u, mu): the displacement from a pre-swollen, stress-free reference
 mesh; polymer volume fraction phi0 = lambda0^-3) and the solvent's chemical potential mu in
 units of kT. With the molecular incompressibility of polymer and solvent, the solvent volume
 per reference volume is J - phi0, and the free energy per reference volume, the Flory-Rehner
-gel of thesis Eq. 4.28 Legendre-transformed to mu (energies in kT_nu = kT / nu),
+gel of thesis Eq. 4.28 Legendre-transformed to mu (energies in kT_nu = kT / nu; chi may be
+linear in the polymer fraction, chi + dchi_dphi phi: materials.mixing),
 
     W(F, mu) = U(F) - kT_nu mu (J - phi0),
 
@@ -48,7 +49,8 @@ def build(cell, elements):
     mesh = ufl.Mesh(ufl.VectorElement("Lagrange", cell, 1))
     c = {"n": ufl.Constant(mesh),  # N nu: the network's stiffness in units of kT/nu
          "phi0": ufl.Constant(mesh),  # polymer volume fraction of the reference state
-         "chi": ufl.Constant(mesh),  # Flory's interaction parameter
+         "chi": ufl.Constant(mesh),  # Flory's interaction parameter at phi = 0
+         "dchi_dphi": ufl.Constant(mesh),  # its slope in phi: chi(phi) = chi + dchi_dphi phi
          "kT_nu": ufl.Constant(mesh),  # energy scale kT/nu (MPa)
          "D": ufl.Constant(mesh),  # solvent diffusivity (length^2/s)
          "shift": ufl.Constant(mesh)}  # TS's shift: d(w_dot)/dw of the implicit scheme
@@ -69,14 +71,15 @@ def build(cell, elements):
     return out, forms, expressions
 
 
-def gel(w, w_dot, degree, n, phi0, chi, kT_nu, D, shift):
+def gel(w, w_dot, degree, n, phi0, chi, dchi_dphi, kT_nu, D, shift):
     u, mu = ufl.split(w)
     u_dot, _ = ufl.split(w_dot)
     W = w.ufl_function_space()
     v, q = ufl.TestFunctions(W)
     F = materials.deformation_gradient(u)
     J = ufl.det(F)
-    psi = materials.flory_rehner_gel(F, n, phi0, chi, kT_nu) - kT_nu * mu * (J - phi0)
+    psi = (materials.flory_rehner_gel(F, n, phi0, chi, kT_nu, dchi_dphi)
+           - kT_nu * mu * (J - phi0))
     quadrature = materials.quadrature_degree(degree)
     dx = ufl.dx(metadata={"quadrature_degree": quadrature})
     J_dot = J * ufl.inner(ufl.inv(F).T, ufl.grad(u_dot))
@@ -87,8 +90,7 @@ def gel(w, w_dot, degree, n, phi0, chi, kT_nu, D, shift):
     tangent = ufl.derivative(residual, w, dw) + shift * ufl.derivative(residual, w_dot, dw)
     _, dmu = ufl.split(dw)
     volume_change = ufl.variable(J)
-    mixing = ((volume_change - phi0) * ufl.ln(1 - phi0 / volume_change)
-              + chi * phi0 * (1 - phi0 / volume_change))
+    mixing = materials.mixing(volume_change, phi0, chi, dchi_dphi)
     drained = (J**2 * ufl.diff(ufl.diff(mixing, volume_change), volume_change)
                + 4.0 / 3.0 * n * phi0**(1.0 / 3.0))
     schur_preconditioner = -kT_nu * (

@@ -176,22 +176,39 @@ def energy_scale(T, nu, length_scale):
     return BOLTZMANN * T / nu * length_scale
 
 
-def flory_rehner_gel(F, n, phi0, chi, kT_nu):
+def flory_rehner_gel(F, n, phi0, chi, kT_nu, dchi_dphi=0):
     """Flory-Rehner gel in a swollen reference state, thesis Eq. 4.28 (per reference volume):
 
-        U = kT/nu [ n/2 phi0 (phi0^(-2/3) I1' - 3 - ln(J'/phi0))
-                    + (J' - phi0) ln(1 - phi0/J') + chi phi0 (1 - phi0/J') ]
+        U = kT/nu [ n/2 phi0 (phi0^(-2/3) I1' - 3 - ln(J'/phi0)) + mixing(J') ]
 
     with n = N nu / V_m the network stiffness, phi0 = lambda0^-3 the polymer volume fraction of
     the reference (mesh) state, I1' = tr(F^T F), J' = det F measured from it, so that the
-    polymer volume fraction is phi = phi0 / J'. Defined for J' > phi0 only (the log of
-    1 - phi0/J'): export J' - phi0 as the admissibility expression. Homogeneous equilibria
-    reproduce Eq. 4.7 (free swelling) and Eq. 4.10-4.11 (uniaxial constraint).
+    polymer volume fraction is phi = phi0 / J', and the mixing energy of mixing() (chi may
+    depend on phi: dchi_dphi). Defined for J' > phi0 only (the log of 1 - phi0/J'): export
+    J' - phi0 as the admissibility expression. Homogeneous equilibria reproduce Eq. 4.7 (free
+    swelling) and Eq. 4.10-4.11 (uniaxial constraint), with chi_bar of Eq. 4.20 in place of
+    chi when dchi_dphi is not 0.
     """
     J = ufl.det(F)
     I1 = ufl.tr(F.T * F)
     return kT_nu * (n / 2 * phi0 * (phi0**(-2.0 / 3.0) * I1 - 3 - ufl.ln(J / phi0))
-                    + (J - phi0) * ufl.ln(1 - phi0 / J) + chi * phi0 * (1 - phi0 / J))
+                    + mixing(J, phi0, chi, dchi_dphi))
+
+
+def mixing(J, phi0, chi, dchi_dphi=0):
+    """Flory-Huggins mixing energy per reference volume in units of kT/nu, J the volume ratio
+    to the reference state and phi = phi0 / J the polymer fraction:
+
+        (J - phi0) ln(1 - phi) + chi(phi) phi0 (1 - phi),   chi(phi) = chi + dchi_dphi phi,
+
+    J times the mixing energy per current volume (1 - phi) ln(1 - phi) + chi phi (1 - phi).
+    A chi linear in phi is the form fitted to gels with a volume phase transition (PNIPAM,
+    Afroze, Nies and Berghmans 2000; Cai and Suo, JMPS 2011); with it the osmotic pressure
+    holds chi_bar = chi(phi) - (1 - phi) dchi_dphi in place of chi (thesis section 4.3.3;
+    cpp/theory chi_bar).
+    """
+    phi = phi0 / J
+    return (J - phi0) * ufl.ln(1 - phi) + (chi + dchi_dphi * phi) * phi0 * (1 - phi)
 
 
 def prestretched(law, F, F0, *args):

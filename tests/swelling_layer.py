@@ -47,6 +47,12 @@ dl/dt = d/dz (D (l - phi0) / l^2 dmu/dz), is one nonlinear diffusion equation.
    below mu0 (measured 6.7e-4 at t = 1.06 s); equal-order Q1-Q1 (--element q1q1), which is not
    inf-sup stable, dips at least 3 times deeper (measured 6.3e-3, 9.5 times).
 
+7. chi linear in phi, chi(phi) = chi + dchi_dphi phi (--dchi_dphi; chi = 0.3, dchi_dphi = 0.6:
+   the osmotic pressure then holds chi_bar = chi(phi) - (1 - phi) dchi_dphi, Eq. 4.20): mu0 of
+   the reference state against P(1) of the energy with that chi (1e-9), and by --path
+   equilibrium the layer's thickness in pure solvent (P(l_inf) = 0: l_inf = 4.63, against 2.67
+   at chi = 0.4 constant) and the free cube's V/V0 (1e-6).
+
 usage: swelling_layer.py GELX_SWELLING WORK_DIR [MPIEXEC NP]
 """
 import json
@@ -73,13 +79,14 @@ N_NU, LAMBDA0, H, D = 1e-3, 1.5, 1.0, 1e-3
 PHI0 = LAMBDA0**-3
 
 
-def energy(l, chi):
+def energy(l, chi, dchi_dphi=0):
+    phi = PHI0 / l
     return (N_NU / 2 * PHI0 * (PHI0**(-2 / 3) * (2 + l * l) - 3 - np.log(l / PHI0))
-            + (l - PHI0) * np.log(1 - PHI0 / l) + chi * PHI0 * (1 - PHI0 / l))
+            + (l - PHI0) * np.log(1 - phi) + (chi + dchi_dphi * phi) * PHI0 * (1 - phi))
 
 
-def stress(l, chi, h=1e-6):
-    return (energy(l + h, chi) - energy(l - h, chi)) / (2 * h)
+def stress(l, chi, dchi_dphi=0, h=1e-6):
+    return (energy(l + h, chi, dchi_dphi) - energy(l - h, chi, dchi_dphi)) / (2 * h)
 
 
 def stiffness(l, chi, h=1e-4):
@@ -228,12 +235,13 @@ for chi in (0.2, 0.4, 0.6):
 chi = 0.4
 
 
-def isotropic_energy(a):
+def isotropic_energy(a, chi, dchi_dphi=0):
+    phi = PHI0 / a**3
     return (N_NU / 2 * PHI0 * (3 * PHI0**(-2 / 3) * a * a - 3 - np.log(a**3 / PHI0))
-            + (a**3 - PHI0) * np.log(1 - PHI0 / a**3) + chi * PHI0 * (1 - PHI0 / a**3))
+            + (a**3 - PHI0) * np.log(1 - phi) + (chi + dchi_dphi * phi) * PHI0 * (1 - phi))
 
 
-a = brentq(lambda a: (isotropic_energy(a + 1e-6) - isotropic_energy(a - 1e-6)) / 2e-6,
+a = brentq(lambda a: (isotropic_energy(a + 1e-6, chi) - isotropic_energy(a - 1e-6, chi)) / 2e-6,
            1 + 1e-6, 5.0, xtol=1e-15)
 summary, rows = run("free_cube", "--chi", str(chi), "--mu", "0", "--sides", "free", "--W",
                     str(H), "--nx", "2", "--nz", "2", "--end_time", "1e8")
@@ -257,4 +265,24 @@ checks.require(f"Q2-Q1: mu's largest dip below mu0 is {dips['q2q1']:.2e} of the 
                "(at most 1e-2)", dips["q2q1"] <= 1e-2)
 checks.require(f"Q1-Q1: its dip {dips['q1q1']:.2e} is at least 3 times Q2-Q1's",
                dips["q1q1"] >= 3 * dips["q2q1"])
+
+# 7. chi linear in phi, chi(phi) = chi + dchi_dphi phi: the reference state's mu0 and the
+#    equilibrium in pure solvent of the layer and of the free cube, from the energy with that
+#    chi (as 1 and 4, 5), to 1e-9 and 1e-6
+chi, dchi_dphi = 0.3, 0.6
+l_inf = brentq(lambda l: stress(l, chi, dchi_dphi), 1 + 1e-9, 20.0, xtol=1e-15)
+summary, rows = run("chi_of_phi_layer", "--chi", str(chi), "--dchi_dphi", str(dchi_dphi),
+                    "--mu", "0", "--path", "equilibrium")
+checks.relative(f"chi = {chi} + {dchi_dphi} phi: mu0 against P(1) of the energy",
+                summary["mu0"], stress(1.0, chi, dchi_dphi), 1e-9)
+checks.relative(f"chi = {chi} + {dchi_dphi} phi: the layer's thickness at equilibrium against "
+                f"H lambda_inf = {H * l_inf:.9f}", summary["thickness"], H * l_inf, 1e-6)
+a = brentq(lambda a: (isotropic_energy(a + 1e-6, chi, dchi_dphi)
+                      - isotropic_energy(a - 1e-6, chi, dchi_dphi)) / 2e-6,
+           1 + 1e-6, 5.0, xtol=1e-15)
+summary, rows = run("chi_of_phi_cube", "--chi", str(chi), "--dchi_dphi", str(dchi_dphi),
+                    "--mu", "0", "--sides", "free", "--W", str(H), "--nx", "2", "--nz", "2",
+                    "--path", "equilibrium")
+checks.relative(f"chi = {chi} + {dchi_dphi} phi: the free cube's V/V0 against a^3 = {a**3:.9f}",
+                summary["swelling_ratio"], a**3, 1e-6)
 checks.finish()

@@ -148,6 +148,7 @@ int main(int argc, char* argv[])
     auto w_dot = std::make_shared<fem::Function<double>>(W);
     gelx::FormBinding forms(geo.mesh, {{"w_p2p1", w}, {"w_dot_p2p1", w_dot}},
                             {{"n", gel.n}, {"phi0", gel.phi_i}, {"chi", chi_i},
+                             {"dchi_dphi", 0.0}, // the thesis' section 4.4 gel: chi(T) only
                              {"kT_nu", p.kT_nu}, {"D", p.diffusivity}, {"shift", 0.0}});
     const auto temperature = [&](double t)
     { return gel.T_i + gelx::smooth_step(t, p.ramp_time) * (gel.T_f - gel.T_i); };

@@ -8,25 +8,26 @@
 //                                                                  (a free sphere)
 //   ./gelx run swelling --path equilibrium            (the state it tends to, without time)
 //
-// A layer of thickness H of the Flory-Rehner gel (thesis Eq. 4.28) in the coupled theory of
-// solvent diffusion and large deformation of Hong, Zhao, Zhou and Suo (forms/swelling.py:
-// unknowns the displacement u and the solvent's chemical potential mu, in units of kT, on
-// Q2-Q1 hexahedra, or equal-order Q1-Q1 to see what an element that is not inf-sup stable
-// does). The reference state is the gel swollen freely to the stretch lambda0 from
-// dry (polymer fraction phi0 = lambda0^-3), stress-free at the chemical potential mu0 that
-// holds it there (cpp/theory: mu0 = phi0^2 (chi - chi_free(phi0)), Eq. 4.7); in that state it
-// was bonded to the substrate at z = 0 (u = 0, no flux) and its sides held laterally (rollers,
-// no flux): a piece of a wide layer (or, --sides free, the piece is an eighth of a free block,
-// in solvent on its three outer faces, or with --shape ellipsoid of a free ellipsoid). At t = 0 the surface z = H meets a solvent of chemical
-// potential mu (0: pure solvent), reached on the smooth step over --ramp_time,
-// and the solvent diffuses in, D its diffusivity. PETSc TS (adaptive BDF2, options
-// -swelling_ts_*) follows the transient to --end_time. At every step the run records the
-// layer's thickness and its swelling ratio V/V0 (the solvent taken up: polymer and solvent
-// are incompressible), and writes displacement, chemical potential and Cauchy stress to
-// fields.xdmf at --outputs times spaced evenly in log t; it checkpoints every
-// --checkpoint_every steps and continues exactly with --restart. With --path equilibrium it
-// solves instead for the state the transient tends to: the solvent at mu throughout, by load
-// steps in mu from mu0 (the cost the transient's is measured against).
+// A layer of thickness H of the Flory-Rehner gel (thesis Eq. 4.28) in the coupled theory of solvent
+// diffusion and large deformation of Hong, Zhao, Zhou and Suo (forms/swelling.py: unknowns the
+// displacement u and the solvent's chemical potential mu, in units of kT, on Q2-Q1 hexahedra, or
+// equal-order Q1-Q1 to see what an element that is not inf-sup stable does). The reference state is
+// the gel swollen freely to the stretch lambda0 from dry (polymer fraction phi0 = lambda0^-3),
+// stress-free at the chemical potential mu0 that holds it there (cpp/theory: mu0 = phi0^2
+// (chi_bar - chi_free(phi0)), Eq. 4.7, with chi_bar of Eq. 4.20 = chi when chi does not depend on
+// phi; --dchi_dphi makes it linear in phi, chi(phi) = chi + dchi_dphi phi, as gels with a volume
+// phase transition are fitted); in that state it was bonded to the substrate at z = 0 (u = 0, no
+// flux) and its sides held laterally (rollers, no flux): a piece of a wide layer (or, --sides free,
+// the piece is an eighth of a free block, in solvent on its three outer faces, or with --shape
+// ellipsoid of a free ellipsoid). At t = 0 the surface z = H meets a solvent of chemical potential
+// mu (0: pure solvent), reached on the smooth step over --ramp_time, and the solvent diffuses in, D
+// its diffusivity. PETSc TS (adaptive BDF2, options -swelling_ts_*) follows the transient to
+// --end_time. At every step the run records the layer's thickness and its swelling ratio V/V0 (the
+// solvent taken up: polymer and solvent are incompressible), and writes displacement, chemical
+// potential and Cauchy stress to fields.xdmf at --outputs times spaced evenly in log t; it
+// checkpoints every --checkpoint_every steps and continues exactly with --restart. With --path
+// equilibrium it solves instead for the state the transient tends to: the solvent at mu throughout,
+// by load steps in mu from mu0 (the cost the transient's is measured against).
 
 #include "swelling.h"
 
@@ -52,6 +53,7 @@
 #include <gelx/io/progress.h>
 #include <gelx/io/transient_record.h>
 #include <theory/flory_rehner.h>
+#include <theory/peo.h>
 
 using namespace dolfinx;
 
@@ -85,7 +87,8 @@ struct Layer
   std::string element = "q2q1"; // Taylor-Hood, or equal-order q1q1
   double grading = 2;       // their sizes shrink towards the surface: z = H (1 - (1 - s)^grading)
   double n = 1e-3;          // N nu: the network's stiffness in kT/nu
-  double chi = 0.4;         // Flory's interaction parameter
+  double chi = 0.4;         // Flory's interaction parameter (at phi = 0)
+  double dchi_dphi = 0;     // its slope in the polymer fraction phi
   double lambda0 = 1.5;     // the reference state's stretch from dry
   double kT_nu = 137.0;     // kT / nu (MPa): water at 298 K, nu = 3e-29 m^3
   double D = 1e-3;          // the solvent's diffusivity (mm^2/s)
@@ -130,7 +133,12 @@ int main(int argc, char* argv[])
            [](double v) { return v >= 1 ? "" : "must be at least 1"; });
   prm.bind("material", "n", p.n, "N nu: the network's stiffness in units of kT/nu",
            P::positive);
-  prm.bind("material", "chi", p.chi, "Flory's polymer-solvent interaction parameter");
+  prm.bind("material", "chi", p.chi,
+           "Flory's polymer-solvent interaction parameter (its value at phi = 0 when "
+           "--dchi_dphi is not 0)");
+  prm.bind("material", "dchi_dphi", p.dchi_dphi,
+           "slope of chi in the polymer fraction phi: chi(phi) = chi + dchi_dphi phi (the form "
+           "fitted to gels with a volume phase transition, PNIPAM's; 0: chi constant)");
   prm.bind("material", "lambda0", p.lambda0,
            "stretch of the stress-free reference state from dry (> 1: phi0 = lambda0^-3)",
            [](double v) { return v > 1 ? "" : "must exceed 1 (the dry state is singular)"; });
@@ -158,7 +166,8 @@ int main(int argc, char* argv[])
   return gelx::run_program(argc, argv, "gelx-swelling", prm, [&](gelx::Run& run)
   {
     const double phi0 = std::pow(p.lambda0, -3.0);
-    const double mu0 = phi0 * phi0 * (p.chi - gelx::theory::chi_free(phi0, p.n));
+    const double chi_bar0 = gelx::theory::chi_bar(p.chi + p.dchi_dphi * phi0, p.dchi_dphi, phi0);
+    const double mu0 = phi0 * phi0 * (chi_bar0 - gelx::theory::chi_free(phi0, p.n));
     if (p.mu < mu0)
       throw gelx::InputError("--mu " + std::to_string(p.mu) + " is below mu0 = "
                              + std::to_string(mu0)
@@ -214,7 +223,8 @@ int main(int argc, char* argv[])
     auto w = std::make_shared<fem::Function<double>>(W);
     auto w_dot = std::make_shared<fem::Function<double>>(W);
     gelx::FormBinding forms(geo.mesh, {{k.w, w}, {k.w_dot, w_dot}},
-                            {{"n", p.n}, {"phi0", phi0}, {"chi", p.chi}, {"kT_nu", p.kT_nu},
+                            {{"n", p.n}, {"phi0", phi0}, {"chi", p.chi},
+                             {"dchi_dphi", p.dchi_dphi}, {"kT_nu", p.kT_nu},
                              {"D", p.D}, {"shift", 0.0}});
     auto U = W->sub({0});
     auto M = W->sub({1});

@@ -7,6 +7,7 @@
 //   ./gelx run swelling --sides free --shape ellipsoid --W 1 --nx 4 --nz 4 --end_time 1e8
 //                                                                  (a free sphere)
 //   ./gelx run swelling --path equilibrium            (the state it tends to, without time)
+//   ./gelx run swelling --chi 0.3 --dchi_dphi 0.6 --path equilibrium     (chi linear in phi)
 //
 // A layer of thickness H of the Flory-Rehner gel (thesis Eq. 4.28) in the coupled theory of solvent
 // diffusion and large deformation of Hong, Zhao, Zhou and Suo (forms/swelling.py: unknowns the

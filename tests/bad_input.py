@@ -123,6 +123,10 @@ CASES = {
         ("flat_grading", ["--grading", "0.5"], "must be at least 1"),
         ("bonded_ellipsoid", ["--shape", "ellipsoid"], "is a free body: give --sides free"),
         ("unknown_shape", ["--shape", "cylinder"], "must be box or ellipsoid"),
+        ("spinodal_reference", ["--chi", "0.85", "--dchi_dphi", "1"],
+         "enters its spinodal at phi = 0.296296"),
+        ("spinodal_on_the_way", ["--lambda0", "1.2", "--chi", "0.75", "--dchi_dphi", "0.5"],
+         "enters its spinodal at phi = 0.4946"),
     ],
     "fiber_film": [
         ("spinodal_step", ["--alpha0", "0.8"], "into its spinodal"),

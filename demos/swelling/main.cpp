@@ -53,8 +53,7 @@
 #include <gelx/common/petsc_utils.h>
 #include <gelx/io/progress.h>
 #include <gelx/io/transient_record.h>
-#include <theory/flory_rehner.h>
-#include <theory/peo.h>
+#include <theory/swelling.h>
 
 using namespace dolfinx;
 
@@ -167,13 +166,24 @@ int main(int argc, char* argv[])
   return gelx::run_program(argc, argv, "gelx-swelling", prm, [&](gelx::Run& run)
   {
     const double phi0 = std::pow(p.lambda0, -3.0);
-    const double chi_bar0 = gelx::theory::chi_bar(p.chi + p.dchi_dphi * phi0, p.dchi_dphi, phi0);
-    const double mu0 = phi0 * phi0 * (chi_bar0 - gelx::theory::chi_free(phi0, p.n));
+    const gelx::theory::LinearChi chi{p.chi, p.dchi_dphi};
+    const double mu0 = gelx::theory::free_gel_mu(phi0, chi, p.n);
     if (p.mu < mu0)
       throw gelx::InputError("--mu " + std::to_string(p.mu) + " is below mu0 = "
                              + std::to_string(mu0)
                              + ", the reference state's: the layer would shrink (give a "
                                "lambda0 that holds less solvent)");
+    // A large chi, or one that grows with phi, can give the gel a volume phase transition: on its
+    // way to the solvent's mu it would pass states of negative drained modulus and separate into a
+    // swollen and a collapsed phase, which this model, without a gradient energy, cannot follow
+    // (the transient loses uniqueness there): refused rather than run into a Newton failure
+    if (const double phi
+        = gelx::theory::spinodal_on_swelling(phi0, chi, p.n, p.mu, p.sides == "free");
+        !std::isnan(phi))
+      throw gelx::InputError("on its way to mu = " + std::to_string(p.mu)
+                             + " the gel enters its spinodal at phi = " + std::to_string(phi)
+                             + " (drained modulus <= 0): it would phase-separate, which this "
+                               "model cannot follow (a smaller --dchi_dphi or --chi)");
 
     const bool ellipsoid = p.shape == "ellipsoid";
     if (ellipsoid && p.sides != "free")

@@ -108,7 +108,12 @@ struct HelixTarget
   /// x*(X) - X at X
   Vector displacement(const double* X) const
   {
-    const Vector r = advance(X[0]), d1 = turn(X[0], {0, 1, 0}), d2 = turn(X[0], {0, 0, 1});
+    return placed(advance(X[0]), turn(X[0], {0, 1, 0}), turn(X[0], {0, 0, 1}), X);
+  }
+  /// x*(X) - X for the section through X whose centre has moved by r from the clamp's and
+  /// whose frame is (d1, d2)
+  Vector placed(const Vector& r, const Vector& d1, const Vector& d2, const double* X) const
+  {
     const Vector start = {0, width / 2, thickness / 2};
     Vector u;
     for (int i = 0; i < 3; ++i)
@@ -132,15 +137,12 @@ struct PerversionTarget
     if (X[0] <= at)
       return before.displacement(X);
     const double s = X[0] - at;
-    const Vector joint = before.advance(at), r = before.turn(at, after.advance(s)),
-                 d1 = before.turn(at, after.turn(s, {0, 1, 0})),
-                 d2 = before.turn(at, after.turn(s, {0, 0, 1}));
-    const Vector start = {0, before.width / 2, before.thickness / 2};
-    Vector u;
+    Vector r = before.advance(at);
+    const Vector beyond = before.turn(at, after.advance(s));
     for (int i = 0; i < 3; ++i)
-      u[i] = start[i] + joint[i] + r[i] + (X[1] - before.width / 2) * d1[i]
-             + (X[2] - before.thickness / 2) * d2[i] - X[i];
-    return u;
+      r[i] += beyond[i];
+    return before.placed(r, before.turn(at, after.turn(s, {0, 1, 0})),
+                         before.turn(at, after.turn(s, {0, 0, 1})), X);
   }
   /// The same with both helices' rates scaled by t
   PerversionTarget scaled(double t) const

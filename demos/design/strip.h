@@ -42,19 +42,18 @@ struct DesignStripGeometry
   int num_parameters() const { return (design_lower ? 2 : 1) * parameters_per_layer(); }
 };
 
-/// The strip [0, length] x [0, width] x [0, thickness], compressible neo-Hookean (Eq. 3.1,
-/// G and K), clamped at x = 0 (and, with far_end, at x = length). Its cells carry the
-/// prestretch of forms/design_strip.py: the stretch s of their stress-free state along the
-/// in-plane direction at angle a from x. In
-/// the upper layer (z > thickness/2), slab k (length/slabs long) has s = p_k and, with
-/// design_angle, a = p_{slabs + k}; the lower layer is stress free (s = 1), or, with
+/// The strip [0, length] x [0, width] x [0, thickness], compressible neo-Hookean (Eq. 3.1, G and
+/// K), clamped at x = 0 (and, with far_end, at x = length). Its cells carry the prestretch of
+/// forms/design_strip.py: the stretch s of their stress-free state along the in-plane direction at
+/// angle a from x. In the upper layer (z > thickness/2), slab k (length/slabs long) has s = p_k
+/// and, with design_angle, a = p_{slabs + k}; the lower layer is stress free (s = 1), or, with
 /// design_lower, designed likewise by the next parameters_per_layer() ones. s < 1 in the upper
-/// layer curls the strip up, by a curvature of about 3 (1 - s) / (2 thickness) for small
-/// misfits (Timoshenko's bimetal with equal layers); a != 0 twists it as it curls, into a
-/// helix. The objective (DesignObjective) is the distance to a target displacement field,
-/// 1/2 int |u - u_target|^2 dX, or the distance of the centreline's curvature and twist to a
-/// helix's (centreline_objective()), plus a Tikhonov term regularisation/2 int (s - 1)^2 dX
-/// and, if asked, a multiple of the elastic energy int psi dX.
+/// layer curls the strip up, by a curvature of about 3 (1 - s) / (2 thickness) for small misfits
+/// (Timoshenko's bimetal with equal layers); a != 0 twists it as it curls, into a helix. The
+/// objective (DesignObjective) is the distance to a target displacement field, 1/2 int |u -
+/// u_target|^2 dX, or the distance of the centreline's curvature and twist to a helix's
+/// (centreline_objective()), plus a Tikhonov term regularisation/2 int (s - 1)^2 dX and, if asked,
+/// a multiple of the elastic energy int psi dX.
 enum class DesignObjective
 {
   placement, ///< the distance to the target displacement (a form: forms/design_strip.py)

@@ -203,6 +203,25 @@ int main(int argc, char* argv[])
       return std::pair{alpha_par, alpha_perp};
     };
 
+    // 4b. The time integrator (PETSc TS), set up before the output, so that a solver option
+    //    it refuses leaves no results folder. TS's error tolerance: rtol 1e-4, and an
+    //    absolute one 1e-4 of mu's undrained jump phi_i^2 (chi_f - chi_i) (mu's scale in kT,
+    //    1e-2 by default; the displacements, of order 1 nm, are held by rtol). The first step
+    //    a tenth of the ramp: it resolves the step in T. Much shorter ones (1e-12 s, 1e-5 of
+    //    (D/2)^2/D) approach the undrained limit, where the mobility rows (D/h^2) vanish
+    //    against the coupling (shift ~ 1/dt): a saddle point, on which MUMPS, its rows and
+    //    columns already scaled, delays thousands of pivots beyond its workspace
+    //    (FACTOR_OUTMEMORY), and with a matching instead (mat_mumps_icntl_6 5) Newton stalls
+    //    at round-off above its tolerance
+    char atol[32], first_step[32];
+    std::snprintf(atol, sizeof atol, "%.6g",
+                  1e-4 * gel.phi_i * gel.phi_i * std::abs(chi_f - chi_i));
+    std::snprintf(first_step, sizeof first_step, "%.6g", p.ramp_time / 10);
+    gelx::set_default_options("fiber_film_",
+                              {{"ts_rtol", "1e-4"}, {"ts_atol", atol}, {"ts_dt", first_step}});
+    gelx::TransientProblem transient(run.comm(), film, w_dot, forms.constant("shift"), set_time,
+                                     p.end_time, "fiber_film_");
+
     // 5. Output: displacement and chemical potential at the nodes, stress per cell
     gelx::ResultsWriter& results = run.results(geo.mesh);
     auto u = gelx::collapse_sub_function(*w, 0);
@@ -231,24 +250,9 @@ int main(int argc, char* argv[])
                    {"theory_alpha0", gel.alpha0},
                    {"setup_time", run.elapsed()}};
 
-    // 6. The transient; fields at times evenly spaced in log t (gelx::LogTimeOutputs), a
-    //    checkpoint after a step holding the reduced unknowns (the macro displacements with
-    //    them), TSBDF's history and this record. TS's error tolerance: rtol 1e-4, and an
-    //    absolute one 1e-4 of mu's undrained jump phi_i^2 (chi_f - chi_i) (mu's scale in kT,
-    //    1e-2 by default; the displacements, of order 1 nm, are held by rtol). The first step
-    //    a tenth of the ramp: it resolves the step in T. Much shorter ones (1e-12 s, 1e-5 of
-    //    (D/2)^2/D) approach the undrained limit, where the mobility rows (D/h^2) vanish
-    //    against the coupling (shift ~ 1/dt): a saddle point, on which MUMPS, its rows and
-    //    columns already scaled, delays thousands of pivots beyond its workspace
-    //    (FACTOR_OUTMEMORY), and with a matching instead (mat_mumps_icntl_6 5) Newton stalls
-    //    at round-off above its tolerance
-    char atol[32], first_step[32];
-    std::snprintf(atol, sizeof atol, "%.6g", 1e-4 * gel.phi_i * gel.phi_i * std::abs(chi_f - chi_i));
-    std::snprintf(first_step, sizeof first_step, "%.6g", p.ramp_time / 10);
-    gelx::set_default_options("fiber_film_",
-                              {{"ts_rtol", "1e-4"}, {"ts_atol", atol}, {"ts_dt", first_step}});
-    gelx::TransientProblem transient(run.comm(), film, w_dot, forms.constant("shift"), set_time,
-                                     p.end_time, "fiber_film_");
+    // 6. The transient (its integrator above); fields at times evenly spaced in log t
+    //    (gelx::LogTimeOutputs), a checkpoint after a step holding the reduced unknowns (the
+    //    macro displacements with them), TSBDF's history and this record
     gelx::ProgressLine progress(
         run.comm(), {.load_name = "t",
                      .quantity = [&]

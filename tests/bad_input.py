@@ -127,6 +127,10 @@ CASES = {
          "enters its spinodal at phi = 0.296296"),
         ("spinodal_on_the_way", ["--lambda0", "1.2", "--chi", "0.75", "--dchi_dphi", "0.5"],
          "enters its spinodal at phi = 0.4946"),
+        ("unknown_newton_test", ["-swelling_newton_test", "cvode"],
+         "-swelling_newton_test cvode: unknown (residual or correction)"),
+        ("misspelt_ts_option", ["-swelling_ts_bdf_ordr", "3"],
+         "no solver object read the option(s) -swelling_ts_bdf_ordr"),
     ],
     "fiber_film": [
         ("spinodal_step", ["--alpha0", "0.8"], "into its spinodal"),
@@ -135,6 +139,8 @@ CASES = {
         ("cell_narrower_than_fiber", ["--D", "10"], "D must exceed the fiber diameter d"),
         ("no_temperature_step", ["--T_f", "298"], "T_f must differ from T_i"),
         ("no_layers", ["--layers", "0"], "'layers' = 0: must be at least 1"),
+        ("unknown_newton_test", ["-fiber_film_newton_test", "exact"],
+         "-fiber_film_newton_test exact: unknown (residual or correction)"),
     ],
     "design": [
         ("stretch_bounds_crossed", ["--stretch_min", "1.1", "--stretch_max", "0.9"],

@@ -12,10 +12,11 @@ passes t95) against the equilibrium solve of the same gel (--path equilibrium: t
 state by load steps in mu, its steps' wall time), both without the setup. Then, on 3 cells,
 the time integrator's accuracy against its cost: BDF of order 2 and 4, TS tolerances rtol
 1e-4 and 1e-3, each step's Newton solve to 1e-3 of its first residual (the default), to
-PETSc's 1e-8, or a single linear solve (the linearly implicit BDF; a run that stops says
-why); the error is the largest difference of the uptake at the steps from that of a reference run (order 3,
-rtol 1e-6), interpolated monotonically in log t, as a fraction of the final uptake. Writes
-bench.csv.
+PETSc's 1e-8, a single linear solve (the linearly implicit BDF; a run that stops says why),
+or stopped by CVODE's test on the correction (-swelling_newton_test correction; also at order
+3 and rtol 3e-3); the error is the largest difference of the uptake at the steps from that of
+a reference run (order 3, rtol 1e-6), interpolated monotonically in log t, as a fraction of
+the final uptake. Writes bench.csv.
 
 usage: bench.py BUILD_DIR OUTPUT_DIR
 """
@@ -108,12 +109,16 @@ _, reference_steps = run("integrator_reference", 3, 3e6, "-swelling_ts_bdf_order
 t_ref, uptake_ref = uptake_history(reference_steps)
 reference = PchipInterpolator(np.log(t_ref), uptake_ref)
 # Each step's nonlinear solve: Newton to 1e-3 of its first residual (the default), to PETSc's
-# 1e-8, or one linear solve from TS's predictor (SNES ksponly: the linearly implicit BDF, whose
-# linearisation error is the square of the predictor's; no line search keeps J > phi0)
+# 1e-8, one linear solve from TS's predictor (SNES ksponly: the linearly implicit BDF, whose
+# linearisation error is the square of the predictor's; no line search keeps J > phi0), or
+# Newton stopped by CVODE's test on the correction against TS's tolerance (gelx::TransientProblem)
 newton_options = {"1e-3": ["-swelling_snes_rtol", "1e-3"], "1e-8": ["-swelling_snes_rtol", "1e-8"],
-                  "one": ["-swelling_snes_type", "ksponly"]}
-cases = [(order, rtol, newton) for order in (2, 4) for rtol in (1e-4, 1e-3)
-         for newton in newton_options] + [(2, 3e-3, "one")]
+                  "one": ["-swelling_snes_type", "ksponly"],
+                  "correction": ["-swelling_newton_test", "correction"]}
+cases = ([(order, rtol, newton) for order in (2, 4) for rtol in (1e-4, 1e-3)
+          for newton in newton_options] + [(2, 3e-3, "one")]
+         + [(order, rtol, "correction") for order, rtol in ((2, 3e-3), (3, 1e-3), (3, 3e-3),
+                                                             (4, 3e-3))])
 integrator_rows = []
 for order, rtol, newton in cases:
     name = f"integrator_bdf{order}_rtol{rtol:g}_newton{newton}"
@@ -157,9 +162,9 @@ for r in split_rows:
 print("the time integrator on 3 cells, to t95 (uptake error: largest, of the final uptake, "
       "against order 3 at rtol 1e-6; the cost against the equilibrium solve on 3 cells):")
 equilibrium_wall = next(r["equilibrium_wall"] for r in rows if r["cells"] == 3)
-print("order   rtol  newton  steps  newton  wall [s]  uptake error  / equilibrium")
+print("order   rtol      newton  steps  newton  wall [s]  uptake error  / equilibrium")
 for r in integrator_rows:
-    head = f"{r['order']:5d} {r['rtol']:6g} {r['newton']:>7}"
+    head = f"{r['order']:5d} {r['rtol']:6g} {r['newton']:>11}"
     if r["status"] != "completed":
         print(f"{head}  {r['status']}")
         continue

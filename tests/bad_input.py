@@ -436,14 +436,15 @@ if scene == "flory_rehner":
 if scene == "swelling":
     # BoomerAMG's interpolation of the rigid-body modes asked for on the fieldsplit's u block:
     # hypre crashes on the mixed space's numbering (SEGV, exit code 59, PETSc's page of
-    # lines), so gelx refuses it with one line once the solver reads its options
+    # lines), so gelx refuses it with one line once the solver reads its options, which the
+    # scene sets up before its output folder
     out = work / "vec_interp_on_mixed_u"
+    shutil.rmtree(out, ignore_errors=True)
     p = run(["--output", str(out), "--nz", "4", "--end_time", "1", "-swelling_linear_solver",
              "fieldsplit", "-swelling_fieldsplit_u_pc_type", "hypre",
              "-swelling_fieldsplit_u_pc_hypre_boomeramg_vec_interp_variant", "3"], timeout=300)
     one_error_line("vec_interp_on_mixed_u", p,
                    "needs a node's displacement components numbered together")
-    summary = read_summary(out)
-    checks.require(f"vec_interp_on_mixed_u: summary status {summary.get('status', '')[:60]!r}",
-                   summary.get("status", "").startswith("failed: "))
+    checks.require(f"vec_interp_on_mixed_u: output folder "
+                   f"{'created' if out.exists() else 'not created'}", not out.exists())
 checks.finish()

@@ -381,6 +381,7 @@ if scene == "block":
     # Divergence: a first small step, then a jump to the full load that 4 Newton iterations
     # cannot reach, with cut-back disabled
     out = work / "forced_divergence"
+    shutil.rmtree(out, ignore_errors=True)  # its summary must be this run's
     p = run(["--output", str(out), "--h", "0.5", "--dt", "0.05", "--dt_grow", "20",
              "--dt_max", "1", "--max_cutbacks", "0", "-newton_snes_max_it", "4"],
             timeout=600)
@@ -399,6 +400,7 @@ if scene == "block":
     # MUMPS reads its options at the first factorisation: a misspelt one ends the run at the
     # first step's end, not after its last (one row kept)
     out = work / "misspelt_mumps_option"
+    shutil.rmtree(out, ignore_errors=True)  # its summary must be this run's
     p = run(["--output", str(out), "--h", "0.5", "--dt", "0.05", "-newton_mat_mumps_icntl_99",
              "1"], timeout=600)
     one_error_line("misspelt_mumps_option", p, "no solver object read the option(s) "
@@ -414,6 +416,7 @@ if scene == "bistrip":
     # failed summary instead of stepping on (here at once: the first step, T / 50, is below
     # the floor of T / 2)
     out = work / "step_floor"
+    shutil.rmtree(out, ignore_errors=True)  # its summary must be this run's
     p = run(["--output", str(out), "--nz", "20", "--end_distance", "290", "--modes", "1",
              "-dynamics_min_step", "0.5"], timeout=300)
     one_error_line("step_floor", p, "below -dynamics_min_step 0.5 s")

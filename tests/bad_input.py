@@ -128,7 +128,7 @@ CASES = {
         ("spinodal_on_the_way", ["--lambda0", "1.2", "--chi", "0.75", "--dchi_dphi", "0.5"],
          "enters its spinodal at phi = 0.4946"),
         ("unknown_newton_test", ["-swelling_newton_test", "cvode"],
-         "-swelling_newton_test cvode: unknown (residual or correction)"),
+         "-swelling_newton_test cvode: must be residual or correction"),
         ("misspelt_ts_option", ["-swelling_ts_bdf_ordr", "3"],
          "no solver object read the option(s) -swelling_ts_bdf_ordr"),
     ],
@@ -140,7 +140,7 @@ CASES = {
         ("no_temperature_step", ["--T_f", "298"], "T_f must differ from T_i"),
         ("no_layers", ["--layers", "0"], "'layers' = 0: must be at least 1"),
         ("unknown_newton_test", ["-fiber_film_newton_test", "exact"],
-         "-fiber_film_newton_test exact: unknown (residual or correction)"),
+         "-fiber_film_newton_test exact: must be residual or correction"),
     ],
     "design": [
         ("stretch_bounds_crossed", ["--stretch_min", "1.1", "--stretch_max", "0.9"],

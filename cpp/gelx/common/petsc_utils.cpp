@@ -282,4 +282,16 @@ std::string string_option(const std::string& prefix, const std::string& name,
   return found ? std::string(value) : fallback;
 }
 
+std::string choice_option(const std::string& prefix, const std::string& name,
+                          const std::string& fallback, const std::vector<std::string>& choices)
+{
+  const std::string value = string_option(prefix, name, fallback);
+  if (std::find(choices.begin(), choices.end(), value) != choices.end())
+    return value;
+  std::string listed = choices.front();
+  for (std::size_t k = 1; k < choices.size(); ++k)
+    listed += (k + 1 == choices.size() ? " or " : ", ") + choices[k];
+  throw InputError("-" + prefix + name + " " + value + ": must be " + listed);
+}
+
 } // namespace gelx

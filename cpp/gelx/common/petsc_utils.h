@@ -136,4 +136,9 @@ int int_option(const std::string& prefix, const std::string& name, int fallback)
 std::string string_option(const std::string& prefix, const std::string& name,
                           const std::string& fallback);
 
+/// Value of an option `-<prefix><name>` that names one of `choices`, or `fallback` when
+/// unset. Throws InputError, naming the choices, for any other value.
+std::string choice_option(const std::string& prefix, const std::string& name,
+                          const std::string& fallback, const std::vector<std::string>& choices);
+
 } // namespace gelx

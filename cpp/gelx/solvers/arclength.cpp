@@ -84,14 +84,11 @@ enum class Stability
 
 Stability stability_test(const std::string& prefix)
 {
-  const std::string name = string_option(prefix, "stability", "none");
-  if (name == "none")
-    return Stability::none;
+  const std::string name
+      = choice_option(prefix, "stability", "none", {"none", "eigenvalue", "inertia"});
   if (name == "eigenvalue")
     return Stability::eigenvalue;
-  if (name == "inertia")
-    return Stability::inertia;
-  throw InputError("-" + prefix + "stability " + name + ": must be none, eigenvalue or inertia");
+  return name == "inertia" ? Stability::inertia : Stability::none;
 }
 
 /// The inertia is read from the factorisation of K the predictor makes: make it an LDL^T one.

@@ -138,10 +138,8 @@ std::vector<Branch> deflated_continuation(
     const std::function<std::vector<OwnedVec>(Vec)>& guesses_from,
     const std::function<void(const Branch&, const Equilibrium&)>& observe)
 {
-  const std::string search = string_option(solver.prefix(), "search", "always");
-  if (search != "always" && search != "at_bifurcations")
-    throw InputError("-" + solver.prefix() + "search " + search
-                     + ": must be always or at_bifurcations");
+  const std::string search
+      = choice_option(solver.prefix(), "search", "always", {"always", "at_bifurcations"});
   std::vector<Branch> branches;
   std::vector<std::size_t> alive; // branches with a point at the previous load
   for (double load : loads)

@@ -96,9 +96,8 @@ InertialDynamics::InertialDynamics(MPI_Comm comm, NonlinearSystem& system,
   // The scheme decides the mass: read TS's type before TS exists
   register_central_difference();
   _explicit = string_option(prefix, "ts_type", "alpha2") == TSCENTRALDIFFERENCE;
-  const std::string mass_kind = string_option(prefix, "mass", _explicit ? "lumped" : "consistent");
-  if (mass_kind != "lumped" && mass_kind != "consistent")
-    throw InputError("-" + prefix + "mass must be consistent or lumped, not " + mass_kind);
+  const std::string mass_kind = choice_option(prefix, "mass", _explicit ? "lumped" : "consistent",
+                                              {"consistent", "lumped"});
   if (_explicit && mass_kind != "lumped")
     throw InputError("-" + prefix + "mass consistent: explicit central differences need the "
                      "lumped mass (a consistent one would need a solve per step)");

@@ -60,10 +60,8 @@ TransientProblem::TransientProblem(MPI_Comm comm, NonlinearSystem& system,
   set_default_option(prefix, "snes_rtol", "1e-3");
   _jacobian = system.create_matrix();
   _problem_rate = system.problem().create_vector();
-  const std::string newton_test = string_option(prefix, "newton_test", "residual");
-  if (newton_test != "residual" && newton_test != "correction")
-    throw InputError("-" + prefix + "newton_test " + newton_test
-                     + ": unknown (residual or correction)");
+  const std::string newton_test
+      = choice_option(prefix, "newton_test", "residual", {"residual", "correction"});
   GELX_PETSC(TSCreate(comm, &_ts));
   GELX_PETSC(TSSetOptionsPrefix(_ts, prefix.c_str()));
   GELX_PETSC(TSSetProblemType(_ts, TS_NONLINEAR));

@@ -15,12 +15,9 @@ namespace gelx
 
 ContactMethod contact_method_option(const std::string& prefix)
 {
-  const std::string method = string_option(prefix, "method", "active_set");
-  if (method == "active_set")
-    return ContactMethod::active_set;
-  if (method == "vi")
-    return ContactMethod::vi;
-  throw InputError("-" + prefix + "method must be active_set or vi, not '" + method + "'");
+  return choice_option(prefix, "method", "active_set", {"active_set", "vi"}) == "vi"
+             ? ContactMethod::vi
+             : ContactMethod::active_set;
 }
 
 RigidPlaneContact::RigidPlaneContact(NonlinearSystem& inner,
